@@ -1,0 +1,139 @@
+//! The learner's hyper-parameters: [`ScasmConfig`] as written by a user (defaults
+//! are the paper's), checked once into [`ScasmParams`] which code can trust.
+
+use crate::MAX_REGRESSORS;
+use crate::error::ConfigError;
+
+/// SCASM's hyper-parameters as a user writes them. Check them with
+/// [`ScasmConfig::validate`].
+///
+/// ```
+/// let params = scasm::ScasmConfig { gamma: 0.995, ..Default::default() }.validate()?;
+/// assert_eq!(params.gamma(), 0.995);
+/// # Ok::<(), scasm::ConfigError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields, default)
+)]
+pub struct ScasmConfig {
+    /// Forgetting factor in (0, 1]: point k of n weighs `gamma^(n-k)`.
+    pub gamma: f64,
+    /// Pull of `x_a` towards `x_s` at each reading, in [0, 1].
+    pub beta: f64,
+    /// Ramp-up time in seconds: only S learns before it, A learns from it, and
+    /// dead reckoning uses the learned A from twice it.
+    #[cfg_attr(feature = "serde", serde(rename = "t_start"))]
+    pub t_start_s: f64,
+    /// Degree of the sensor model S (pixels -> location), 1..=MAX_REGRESSORS.
+    pub sensor_degree: usize,
+    /// Degree of the action model A (command -> velocity), 1..MAX_REGRESSORS.
+    pub action_degree: usize,
+    /// Commands are divided by this inside the action fit (the largest command
+    /// magnitude is a good choice); the fitted function does not depend on it.
+    pub command_scale: f64,
+}
+
+impl Default for ScasmConfig {
+    /// The paper's values: gamma 0.999, beta 1/30, t_start 20 s, degrees 3 and 4.
+    fn default() -> Self {
+        Self {
+            gamma: 0.999,
+            beta: 1.0 / 30.0,
+            t_start_s: 20.0,
+            sensor_degree: 3,
+            action_degree: 4,
+            command_scale: 300.0,
+        }
+    }
+}
+
+impl ScasmConfig {
+    /// Checks every value's range.
+    pub fn validate(self) -> Result<ScasmParams, ConfigError> {
+        if !(self.gamma > 0.0 && self.gamma <= 1.0) {
+            return Err(ConfigError::Gamma { gamma: self.gamma });
+        }
+        if !(0.0..=1.0).contains(&self.beta) {
+            return Err(ConfigError::Beta { beta: self.beta });
+        }
+        if !(self.t_start_s.is_finite() && self.t_start_s >= 0.0) {
+            return Err(ConfigError::TStart {
+                t_start_s: self.t_start_s,
+            });
+        }
+        if !(1..=MAX_REGRESSORS).contains(&self.sensor_degree) {
+            return Err(ConfigError::SensorDegree {
+                degree: self.sensor_degree,
+                max: MAX_REGRESSORS,
+            });
+        }
+        if !(1..MAX_REGRESSORS).contains(&self.action_degree) {
+            return Err(ConfigError::ActionDegree {
+                degree: self.action_degree,
+                max: MAX_REGRESSORS - 1,
+            });
+        }
+        if !(self.command_scale.is_finite() && self.command_scale > 0.0) {
+            return Err(ConfigError::CommandScale {
+                command_scale: self.command_scale,
+            });
+        }
+        Ok(ScasmParams(self))
+    }
+}
+
+/// Checked hyper-parameters: every value is in range. The default is the paper's.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "ScasmConfig", into = "ScasmConfig")
+)]
+pub struct ScasmParams(ScasmConfig);
+
+impl TryFrom<ScasmConfig> for ScasmParams {
+    type Error = ConfigError;
+    fn try_from(config: ScasmConfig) -> Result<Self, ConfigError> {
+        config.validate()
+    }
+}
+
+impl From<ScasmParams> for ScasmConfig {
+    fn from(params: ScasmParams) -> Self {
+        params.0
+    }
+}
+
+impl ScasmParams {
+    /// Forgetting factor in (0, 1].
+    pub fn gamma(&self) -> f64 {
+        self.0.gamma
+    }
+    /// Pull towards `x_s`, in [0, 1].
+    pub fn beta(&self) -> f64 {
+        self.0.beta
+    }
+    /// Ramp-up time in seconds.
+    pub fn t_start_s(&self) -> f64 {
+        self.0.t_start_s
+    }
+    /// Degree of S.
+    pub fn sensor_degree(&self) -> usize {
+        self.0.sensor_degree
+    }
+    /// Degree of A.
+    pub fn action_degree(&self) -> usize {
+        self.0.action_degree
+    }
+    /// Command normalisation.
+    pub fn command_scale(&self) -> f64 {
+        self.0.command_scale
+    }
+    /// The values as a plain config.
+    pub fn config(&self) -> ScasmConfig {
+        self.0
+    }
+}

@@ -1,0 +1,51 @@
+//! # scasm: Simultaneous Calibration of Action and Sensor Models
+//!
+//! The learner of Stronger & Stone's "Simultaneous Calibration of Action and
+//! Sensor Models on a Mobile Robot": from walk commands, timestamps and beacon
+//! readings alone, a robot learns at once its action model (command -> velocity)
+//! and its sensor model (beacon height in pixels -> distance), each from the other.
+//!
+//! The crate knows nothing of physics or simulators. A host (the testbed, or a
+//! real robot) drives any [`CalibrationLearner`] with [`Event`]s; [`Scasm`] is the
+//! paper's learner. With default features off it needs neither the standard
+//! library nor an allocator, so it can run on board.
+//!
+//! Numerics: each model is an incremental exponentially weighted least-squares fit
+//! (Eq. 2-7) kept in square-root (QR) form with internally normalised inputs; it
+//! gives the batch weighted least-squares solution in O(1) time and memory per
+//! point, and reports "not yet" (`None`) while the data do not determine a model.
+//!
+//! ```
+//! use scasm::{CalibrationLearner, Event, Scasm, ScasmConfig, Mode};
+//!
+//! let params = ScasmConfig { gamma: 0.999, ..Default::default() }.validate()?;
+//! let mut learner = Scasm::new(params, Mode::Simultaneous)?;
+//! learner.handle(Event::Command { t_s: 0.0, dt_s: 0.05, command: 120.0 })?;
+//! learner.handle(Event::Reading { t_s: 0.05, obs_px: 21.5 })?;
+//! assert!(learner.sensor_model().is_none()); // one reading determines no cubic
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+#![cfg_attr(not(feature = "std"), no_std)]
+#![warn(missing_docs)]
+
+mod action_fit;
+mod config;
+mod error;
+mod learner;
+mod poly_fit;
+mod polynomial;
+mod scasm;
+mod wls;
+
+/// Most regressors one fit can have: a sensor model of degree up to this, an
+/// action model of degree up to one less (its regressors are `V_0..V_d`).
+pub const MAX_REGRESSORS: usize = 8;
+
+pub use config::{ScasmConfig, ScasmParams};
+pub use error::{ConfigError, EventError};
+pub use learner::{CalibrationLearner, Event};
+pub use polynomial::{MAX_COEFFS, Polynomial};
+pub use scasm::{Mode, Scasm};
+
+#[cfg(test)]
+mod proptests;

@@ -1,0 +1,247 @@
+//! The SCASM learner (the paper's Fig. 4) and its one-sided special cases
+//! (sections IV and V), all driven through [`CalibrationLearner`].
+
+use crate::action_fit::ActionFit;
+use crate::config::ScasmParams;
+use crate::error::{ConfigError, EventError};
+use crate::learner::{CalibrationLearner, Event};
+use crate::poly_fit::PolynomialFit;
+use crate::polynomial::Polynomial;
+
+/// How far (s) an event's time may stray from the learner's clock, for hosts
+/// that add up their time steps in another order.
+const TIME_TOLERANCE_S: f64 = 1e-6;
+
+/// What is learned from what.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum Mode {
+    /// Both models at once, each from the other (section VI, Fig. 4).
+    Simultaneous,
+    /// S from one constant action: regress readings on time (Fig. 2a). The
+    /// learned S is in "seconds of this walk".
+    SensorFromConstantAction,
+    /// S from a given action model, by dead reckoning (section IV).
+    SensorFromAction(Polynomial),
+    /// A from a given sensor model (section V, Eq. 5).
+    ActionFromSensor(Polynomial),
+}
+
+/// Simultaneous Calibration of Action and Sensor Models.
+///
+/// Dead reckoning `x_a` starts at 0 with the identity action model A0; S learns
+/// from `(obs, x_a)` from the start, A learns from `(t, S(obs))` after `t_start`,
+/// and from `2 t_start` dead reckoning uses the learned A. Each reading pulls
+/// `x_a` a fraction `beta` towards `x_s`, which keeps the pair from drifting apart.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Scasm {
+    params: ScasmParams,
+    mode: Mode,
+    /// End of the last command interval, s.
+    clock_s: f64,
+    x_a: f64,
+    x_s: Option<f64>,
+    sensor_fit: PolynomialFit,
+    action_fit: ActionFit,
+    sensor_model: Option<Polynomial>,
+    action_model: Option<Polynomial>,
+}
+
+impl Default for Scasm {
+    /// The paper's simultaneous learner with its hyper-parameters.
+    fn default() -> Self {
+        Self::build(ScasmParams::default(), Mode::Simultaneous)
+    }
+}
+
+impl Scasm {
+    /// A learner in the given mode; a model given to a one-sided mode must be finite.
+    pub fn new(params: ScasmParams, mode: Mode) -> Result<Self, ConfigError> {
+        match mode {
+            Mode::SensorFromAction(a) if !a.is_finite() => {
+                Err(ConfigError::GivenModel { which: "action" })
+            }
+            Mode::ActionFromSensor(s) if !s.is_finite() => {
+                Err(ConfigError::GivenModel { which: "sensor" })
+            }
+            _ => Ok(Self::build(params, mode)),
+        }
+    }
+
+    fn build(params: ScasmParams, mode: Mode) -> Self {
+        Self {
+            params,
+            mode,
+            clock_s: 0.0,
+            x_a: 0.0,
+            x_s: None,
+            sensor_fit: PolynomialFit::new(params.sensor_degree(), params.gamma()),
+            action_fit: ActionFit::new(
+                params.action_degree(),
+                params.gamma(),
+                params.command_scale(),
+            ),
+            sensor_model: None,
+            action_model: None,
+        }
+    }
+
+    /// The hyper-parameters in use.
+    pub fn params(&self) -> &ScasmParams {
+        &self.params
+    }
+
+    /// The learning mode.
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The learner's clock: the end of the last command interval, s.
+    pub fn clock_s(&self) -> f64 {
+        self.clock_s
+    }
+
+    /// Readings the sensor model has learned from.
+    pub fn sensor_points(&self) -> u64 {
+        self.sensor_fit.points()
+    }
+
+    /// The action model dead reckoning uses for a command starting at `t_s`.
+    fn reckoning_model(&self, t_s: f64) -> Polynomial {
+        match self.mode {
+            Mode::SensorFromAction(a) => a,
+            Mode::SensorFromConstantAction => Polynomial::constant(1.0),
+            Mode::ActionFromSensor(_) => self.action_model.unwrap_or_else(Polynomial::identity),
+            Mode::Simultaneous if t_s < 2.0 * self.params.t_start_s() => Polynomial::identity(),
+            Mode::Simultaneous => self.action_model.unwrap_or_else(Polynomial::identity),
+        }
+    }
+
+    fn check_time(&self, t_s: f64) -> Result<(), EventError> {
+        finite("t_s", t_s)?;
+        if t_s < self.clock_s - TIME_TOLERANCE_S {
+            return Err(EventError::TimeWentBackwards {
+                t_s,
+                clock_s: self.clock_s,
+            });
+        }
+        if t_s > self.clock_s + TIME_TOLERANCE_S {
+            return Err(EventError::TimeGap {
+                t_s,
+                clock_s: self.clock_s,
+            });
+        }
+        Ok(())
+    }
+
+    fn on_command(&mut self, t_s: f64, dt_s: f64, command: f64) -> Result<(), EventError> {
+        self.check_time(t_s)?;
+        finite("dt_s", dt_s)?;
+        finite("command", command)?;
+        if dt_s <= 0.0 {
+            return Err(EventError::NonPositiveDuration { dt_s });
+        }
+        let velocity = self.reckoning_model(t_s).eval(command);
+        if velocity.is_finite() {
+            self.x_a += velocity * dt_s;
+        }
+        self.action_fit.integrate(command, dt_s);
+        self.clock_s = t_s + dt_s;
+        Ok(())
+    }
+
+    fn on_reading(&mut self, t_s: f64, obs_px: f64) -> Result<(), EventError> {
+        self.check_time(t_s)?;
+        finite("obs_px", obs_px)?;
+        if obs_px <= 0.0 {
+            return Err(EventError::NonPositiveReading { obs_px });
+        }
+        match self.mode {
+            Mode::Simultaneous => {
+                if t_s > self.params.t_start_s() {
+                    if let Some(x_s) = self.sensor_estimate(obs_px) {
+                        self.learn_action(x_s);
+                        let beta = self.params.beta();
+                        self.x_a = (1.0 - beta) * self.x_a + beta * x_s;
+                    }
+                }
+                self.learn_sensor(obs_px);
+            }
+            Mode::SensorFromConstantAction | Mode::SensorFromAction(_) => {
+                self.learn_sensor(obs_px);
+                self.x_s = self.sensor_model.map(|s| s.eval(obs_px));
+            }
+            Mode::ActionFromSensor(s) => {
+                let x_s = s.eval(obs_px);
+                self.x_s = Some(x_s);
+                self.learn_action(x_s);
+            }
+        }
+        Ok(())
+    }
+
+    /// `S_t(obs)`, recorded as the latest `x_s`, if S exists and gives a number.
+    fn sensor_estimate(&mut self, obs_px: f64) -> Option<f64> {
+        self.x_s = self
+            .sensor_model
+            .map(|s| s.eval(obs_px))
+            .filter(|x| x.is_finite());
+        self.x_s
+    }
+
+    fn learn_action(&mut self, x_s: f64) {
+        self.action_fit.add(x_s);
+        self.action_model = self.action_fit.model().map(|(a, _x0)| a);
+    }
+
+    fn learn_sensor(&mut self, obs_px: f64) {
+        if self.x_a.is_finite() {
+            self.sensor_fit.add(obs_px, self.x_a);
+            self.sensor_model = self.sensor_fit.polynomial();
+        }
+    }
+}
+
+fn finite(field: &'static str, value: f64) -> Result<(), EventError> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(EventError::NonFinite { field, value })
+    }
+}
+
+impl CalibrationLearner for Scasm {
+    fn name(&self) -> &'static str {
+        "scasm"
+    }
+
+    fn handle(&mut self, event: Event) -> Result<(), EventError> {
+        match event {
+            Event::Command { t_s, dt_s, command } => self.on_command(t_s, dt_s, command),
+            Event::Reading { t_s, obs_px } => self.on_reading(t_s, obs_px),
+        }
+    }
+
+    fn action_model(&self) -> Option<Polynomial> {
+        match self.mode {
+            Mode::SensorFromAction(a) => Some(a),
+            _ => self.action_model,
+        }
+    }
+
+    fn sensor_model(&self) -> Option<Polynomial> {
+        match self.mode {
+            Mode::ActionFromSensor(s) => Some(s),
+            _ => self.sensor_model,
+        }
+    }
+
+    fn x_a(&self) -> Option<f64> {
+        Some(self.x_a)
+    }
+
+    fn x_s(&self) -> Option<f64> {
+        self.x_s
+    }
+}

@@ -1,0 +1,56 @@
+//! A deterministic event stream for the learner's own tests: a point robot under
+//! a made-up nonlinear action model, seen by an ideal pinhole with pseudo-noise.
+
+use scasm::{CalibrationLearner, Event};
+
+pub const DT_S: f64 = 0.05;
+
+/// Forward speed (mm/s) of the made-up robot.
+pub fn true_velocity(c: f64) -> f64 {
+    let u = c / 300.0;
+    300.0 * u + 40.0 * u * u - 30.0 * u * u * u
+}
+
+/// The events of frames `from..to`: a command over each frame, then a reading.
+/// Distance moves between 1.2 and 3.6 m with commands changing every 3 s.
+pub fn events(from: u64, to: u64) -> Vec<Event> {
+    let (mut x, mut dir, mut out) = (2400.0_f64, 1.0_f64, Vec::new());
+    let mut lcg: u64 = 12345;
+    let mut command = 0.0;
+    for k in 0..to {
+        if k % 60 == 0 {
+            lcg = lcg
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            command = dir * ((lcg >> 11) as f64 / (1u64 << 53) as f64) * 300.0;
+        }
+        let t_s = k as f64 * DT_S;
+        x -= true_velocity(command) * DT_S;
+        lcg = lcg
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let noise = ((lcg >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0;
+        let obs_px = 76_800.0 / x + noise;
+        if (dir > 0.0 && x < 1200.0) || (dir < 0.0 && x > 3600.0) {
+            dir = -dir;
+        }
+        if k >= from {
+            out.push(Event::Command {
+                t_s,
+                dt_s: DT_S,
+                command,
+            });
+            out.push(Event::Reading {
+                t_s: t_s + DT_S,
+                obs_px,
+            });
+        }
+    }
+    out
+}
+
+pub fn feed(learner: &mut dyn CalibrationLearner, events: &[Event]) {
+    for &e in events {
+        learner.handle(e).expect("valid event");
+    }
+}

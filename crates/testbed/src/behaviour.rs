@@ -1,0 +1,90 @@
+//! The paper's training behaviour (section II): walk towards the beacon and away
+//! from it, with random commands held for a while, turning round when the beacon
+//! looks too big or too small. It sees only readings, as the robot would.
+
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+
+/// Settings of the training behaviour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BehaviourConfig {
+    /// Largest command magnitude (forwards phases pick in `[0, max]`, backwards in `[-max, 0]`).
+    pub max_command: f64,
+    /// How long each command is held, s.
+    pub hold_s: f64,
+    /// Turn to backwards when a reading is at least this big (too close), px.
+    pub near_obs_px: f64,
+    /// Turn to forwards when a reading is at most this small (too far), px.
+    pub far_obs_px: f64,
+}
+
+/// Which way the robot is going.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// Towards the beacon (positive commands).
+    Forwards,
+    /// Away from the beacon (negative commands).
+    Backwards,
+}
+
+/// The behaviour's state: its phase, the command in force and until when.
+#[derive(Debug, Clone)]
+pub struct TrainingBehaviour {
+    config: BehaviourConfig,
+    rng: ChaCha8Rng,
+    phase: Phase,
+    command: f64,
+    hold_until_s: f64,
+}
+
+impl TrainingBehaviour {
+    /// Starts in `phase` with a fresh command at time 0.
+    pub fn new(config: BehaviourConfig, rng: ChaCha8Rng, phase: Phase) -> Self {
+        let mut b = Self {
+            config,
+            rng,
+            phase,
+            command: 0.0,
+            hold_until_s: 0.0,
+        };
+        b.pick(0.0);
+        b
+    }
+
+    fn pick(&mut self, t_s: f64) {
+        let magnitude = self.rng.random_range(0.0..=self.config.max_command);
+        self.command = match self.phase {
+            Phase::Forwards => magnitude,
+            Phase::Backwards => -magnitude,
+        };
+        self.hold_until_s = t_s + self.config.hold_s;
+    }
+
+    /// Takes a reading (if any) at `t_s`: turns round if the beacon looks too big
+    /// or too small, which starts a new command at once.
+    pub fn observe(&mut self, t_s: f64, obs_px: Option<f64>) {
+        let Some(obs) = obs_px else { return };
+        let turn = match self.phase {
+            Phase::Forwards if obs >= self.config.near_obs_px => Some(Phase::Backwards),
+            Phase::Backwards if obs <= self.config.far_obs_px => Some(Phase::Forwards),
+            _ => None,
+        };
+        if let Some(phase) = turn {
+            self.phase = phase;
+            self.pick(t_s);
+        }
+    }
+
+    /// The command in force at `t_s` (a new one is drawn when the old one's time is up).
+    pub fn command(&mut self, t_s: f64) -> f64 {
+        if t_s >= self.hold_until_s {
+            self.pick(t_s);
+        }
+        self.command
+    }
+
+    /// The current phase.
+    pub fn phase(&self) -> Phase {
+        self.phase
+    }
+}

@@ -1,0 +1,12 @@
+//! # testbed: experiments that connect a robot to a calibration learner
+//!
+//! The robot side knows nothing of learning and the learner knows nothing of
+//! physics; this crate connects them. It holds the paper's training behaviour
+//! (section II), its evaluation protocol (section VII), the seeding scheme, and a
+//! synthetic point-robot world used to check the learner without physics.
+#![warn(missing_docs)]
+
+pub mod behaviour;
+pub mod metrics;
+pub mod seeds;
+pub mod synthetic;
