@@ -1,0 +1,108 @@
+//! Typed errors of the simulator: what is wrong, and where.
+
+/// A robot description that cannot be used, with what is wrong in it.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RobotError {
+    /// The file could not be read.
+    #[error("cannot read robot description {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The text is not valid URDF.
+    #[error("malformed URDF: {reason}")]
+    Parse {
+        /// The parser's message.
+        reason: String,
+    },
+    /// A link the robot needs is not there.
+    #[error("URDF has no link named `{link}`")]
+    MissingLink {
+        /// The link's name.
+        link: String,
+    },
+    /// A joint the robot needs is not there.
+    #[error("URDF has no joint named `{joint}`")]
+    MissingJoint {
+        /// The joint's name.
+        joint: String,
+    },
+    /// Two links share a name.
+    #[error("URDF defines link `{link}` more than once")]
+    DuplicateLink {
+        /// The link's name.
+        link: String,
+    },
+    /// A joint names a link that does not exist.
+    #[error("joint `{joint}` refers to link `{link}`, which does not exist")]
+    DanglingJoint {
+        /// The joint's name.
+        joint: String,
+        /// The missing link.
+        link: String,
+    },
+    /// A link has two parents, or the links do not form one tree rooted at the torso.
+    #[error("link `{link}` is not in one tree rooted at `torso`: {reason}")]
+    NotATree {
+        /// The link's name.
+        link: String,
+        /// What is wrong.
+        reason: &'static str,
+    },
+    /// A joint connects the wrong links or has the wrong type or axis.
+    #[error("joint `{joint}`: {reason}")]
+    BadJoint {
+        /// The joint's name.
+        joint: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A link's mass or inertia is not positive and finite.
+    #[error("link `{link}` has an invalid mass or inertia: {reason}")]
+    BadInertia {
+        /// The link's name.
+        link: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A leg's lower segment has no spherical foot at its end.
+    #[error("link `{link}` needs one sphere collision as its foot")]
+    MissingFoot {
+        /// The link's name.
+        link: String,
+    },
+    /// The camera frame is not fixed to the head.
+    #[error("the `camera` link must be fixed directly to `head`")]
+    CameraNotOnHead,
+}
+
+/// A simulation setting out of range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimConfigError {
+    /// A value is outside its valid range.
+    #[error("{key} must be {expected}, got {value}")]
+    OutOfRange {
+        /// The setting's name.
+        key: &'static str,
+        /// What it must be.
+        expected: &'static str,
+        /// The value given.
+        value: f64,
+    },
+}
+
+/// Why a simulation could not be built.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SimError {
+    /// A setting is out of range.
+    #[error(transparent)]
+    Config(#[from] SimConfigError),
+    /// The robot description cannot be used.
+    #[error(transparent)]
+    Robot(#[from] RobotError),
+}

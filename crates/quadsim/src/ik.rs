@@ -1,0 +1,103 @@
+//! Analytic inverse kinematics of a three-joint leg (abduction about x, hip and
+//! knee about y, two segments), and its forward kinematics for checking.
+
+/// A leg's geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LegGeometry {
+    /// Hip to knee, m.
+    pub thigh_m: f64,
+    /// Knee to foot centre, m.
+    pub shank_m: f64,
+    /// Which way the knee bends: `1.0` swings the foot backwards (the knee points
+    /// forwards, like a dog's hind leg), `-1.0` the other way (like its elbow).
+    pub knee_sign: f64,
+}
+
+/// Joint angles of one leg, rad, in the URDF's conventions (right-handed rotations
+/// about the joint axes: abduction about +x, hip and knee about +y).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LegAngles {
+    /// Abduction (roll).
+    pub abduction: f64,
+    /// Hip (pitch).
+    pub hip: f64,
+    /// Knee (pitch, relative to the thigh).
+    pub knee: f64,
+}
+
+/// The foot's position relative to the hip (body frame: x forwards, y left, z up)
+/// for these angles.
+pub fn forward(g: &LegGeometry, a: &LegAngles) -> [f64; 3] {
+    // In the leg's plane (after abduction): rotation about y by q maps a vector
+    // pointing down (0, 0, -l) to (-l sin q, 0, -l cos q).
+    let x = -g.thigh_m * a.hip.sin() - g.shank_m * (a.hip + a.knee).sin();
+    let down = g.thigh_m * a.hip.cos() + g.shank_m * (a.hip + a.knee).cos();
+    // Abduction rotates (0, 0, -down) about x: y = down sin(q), z = -down cos(q).
+    [x, down * a.abduction.sin(), -down * a.abduction.cos()]
+}
+
+/// The joint angles that put the foot at `p` relative to the hip, or `None` if it
+/// is out of reach.
+pub fn inverse(g: &LegGeometry, p: [f64; 3]) -> Option<LegAngles> {
+    let [x, y, z] = p;
+    let down = (y * y + z * z).sqrt();
+    if down <= 0.0 {
+        return None;
+    }
+    let abduction = y.atan2(-z);
+    // Planar two-link problem in the leg's plane: reach (x, -down).
+    let r2 = x * x + down * down;
+    let (l1, l2) = (g.thigh_m, g.shank_m);
+    let cos_knee = (r2 - l1 * l1 - l2 * l2) / (2.0 * l1 * l2);
+    if !(-1.0..=1.0).contains(&cos_knee) {
+        return None;
+    }
+    let knee = g.knee_sign * cos_knee.acos();
+    // Angle of the hip-foot line from straight down, positive backwards.
+    let line = (-x).atan2(down);
+    let hip = line - (l2 * knee.sin()).atan2(l1 + l2 * knee.cos());
+    Some(LegAngles {
+        abduction,
+        hip,
+        knee,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inverse_then_forward_returns_the_target() {
+        for knee_sign in [1.0, -1.0] {
+            let g = LegGeometry {
+                thigh_m: 0.07,
+                shank_m: 0.07,
+                knee_sign,
+            };
+            for &p in &[
+                [0.0, 0.0, -0.105],
+                [0.04, 0.01, -0.1],
+                [-0.045, -0.012, -0.09],
+                [0.02, 0.0, -0.13],
+            ] {
+                let a = inverse(&g, p).expect("reachable");
+                let q = forward(&g, &a);
+                for i in 0..3 {
+                    assert!((p[i] - q[i]).abs() < 1e-12, "{p:?} -> {a:?} -> {q:?}");
+                }
+                assert!(a.knee * knee_sign > 0.0, "knee bends the chosen way");
+            }
+        }
+    }
+
+    #[test]
+    fn out_of_reach_is_none() {
+        let g = LegGeometry {
+            thigh_m: 0.07,
+            shank_m: 0.07,
+            knee_sign: 1.0,
+        };
+        assert!(inverse(&g, [0.0, 0.0, -0.2]).is_none());
+    }
+}

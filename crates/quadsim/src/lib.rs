@@ -1,0 +1,28 @@
+//! # quadsim: an Aibo-class quadruped that walks in rapier3d
+//!
+//! The robot of Stronger & Stone's section II: a 1.6 kg quadruped described by a
+//! URDF, simulated as a rapier multibody whose twelve leg joints are driven by
+//! torque- and speed-limited servos. A walk command sets the gait parameters by
+//! the paper's Eq. 1; the walk engine turns them into foot loci and joint angles;
+//! the robot moves only because its feet push on the floor. Its true
+//! command-to-velocity response comes out of the physics, not from a formula.
+//!
+//! This crate knows nothing of learning. It offers ground truth (pose, distance
+//! along the line of approach) for testbeds and tests; a learner must never see it.
+#![warn(missing_docs)]
+
+pub mod description;
+pub mod error;
+pub mod gait;
+pub mod heading;
+pub mod ik;
+pub mod servo;
+pub mod sim;
+pub mod walk;
+
+pub use description::{LEG_NAMES, RobotDescription};
+pub use error::{RobotError, SimConfigError, SimError};
+pub use sim::{QuadrupedSim, SimConfig, TorsoState};
+
+/// The default robot description shipped in `assets/ers7.urdf`.
+pub const ERS7_URDF: &str = include_str!("../../../assets/ers7.urdf");

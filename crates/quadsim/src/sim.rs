@@ -1,0 +1,469 @@
+//! The physical world: the quadruped as a rapier multibody on a floor, its servos
+//! driven by the walk engine, and the ground-truth queries a testbed may make.
+//! The robot moves only by its feet pushing on the floor.
+
+use rapier3d::dynamics::{JointAxis, MotorModel, MultibodyJointHandle, RigidBodyHandle};
+use rapier3d::geometry::ColliderBuilder;
+use rapier3d::math::{Pose, Real, Rotation, Vector};
+use rapier3d::pipeline::PhysicsWorld;
+use rapier3d::prelude::RigidBodyBuilder;
+use rapier3d_urdf::{UrdfLoaderOptions, UrdfMultibodyOptions, UrdfRobot};
+
+use crate::description::RobotDescription;
+use crate::error::{RobotError, SimConfigError, SimError};
+use crate::heading::{HeadingConfig, HeadingKeeper};
+use crate::ik::LegAngles;
+use crate::servo::{ServoConfig, ServoSetpoints};
+use crate::walk::{WalkConfig, WalkEngine};
+
+/// Settings of one simulated world.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SimConfig {
+    /// Physics timestep, s.
+    pub dt_s: f64,
+    /// Velocity-solver iterations per step.
+    pub solver_iterations: usize,
+    /// Coulomb friction of the feet and floor.
+    pub friction: f64,
+    /// The leg servos.
+    pub servo: ServoConfig,
+    /// The walk engine.
+    pub walk: WalkConfig,
+    /// The heading keeper.
+    pub heading: HeadingConfig,
+    /// Where the beacon stands on the floor, m (world frame, z up).
+    pub beacon_xy_m: [f64; 2],
+    /// How far from the beacon the robot starts, facing it along +x, m.
+    pub start_distance_m: f64,
+}
+
+impl Default for SimConfig {
+    fn default() -> Self {
+        Self {
+            dt_s: 0.002,
+            solver_iterations: 1,
+            friction: 0.9,
+            servo: ServoConfig::default(),
+            walk: WalkConfig::default(),
+            heading: HeadingConfig::default(),
+            beacon_xy_m: [0.0, 0.0],
+            start_distance_m: 2.4,
+        }
+    }
+}
+
+impl SimConfig {
+    /// Checks every value's range.
+    pub fn validate(&self) -> Result<(), SimConfigError> {
+        let checks: [(&'static str, f64, bool, &'static str); 9] = [
+            (
+                "physics.dt",
+                self.dt_s,
+                self.dt_s > 0.0 && self.dt_s <= 0.01,
+                "in (0, 0.01] s",
+            ),
+            (
+                "physics.solver_iterations",
+                self.solver_iterations as f64,
+                (1..=50).contains(&self.solver_iterations),
+                "in 1..=50",
+            ),
+            (
+                "world.friction",
+                self.friction,
+                self.friction >= 0.0 && self.friction <= 5.0,
+                "in [0, 5]",
+            ),
+            (
+                "servo.kp",
+                self.servo.kp_nm_per_rad,
+                self.servo.kp_nm_per_rad > 0.0,
+                "> 0",
+            ),
+            (
+                "servo.kd",
+                self.servo.kd_nm_s_per_rad,
+                self.servo.kd_nm_s_per_rad >= 0.0,
+                ">= 0",
+            ),
+            (
+                "servo.max_torque",
+                self.servo.max_torque_nm,
+                self.servo.max_torque_nm > 0.0,
+                "> 0",
+            ),
+            (
+                "servo.max_speed",
+                self.servo.max_speed_rad_s,
+                self.servo.max_speed_rad_s > 0.0,
+                "> 0",
+            ),
+            (
+                "servo.command_period",
+                self.servo.command_period_s,
+                self.servo.command_period_s >= self.dt_s,
+                ">= physics.dt",
+            ),
+            (
+                "world.start_distance",
+                self.start_distance_m,
+                self.start_distance_m > 0.3,
+                "> 0.3 m",
+            ),
+        ];
+        for (key, value, ok, expected) in checks {
+            if !(ok && value.is_finite()) {
+                return Err(SimConfigError::OutOfRange {
+                    key,
+                    expected,
+                    value,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    fn steps_per_command(&self) -> u64 {
+        ((self.servo.command_period_s / self.dt_s).round() as u64).max(1)
+    }
+}
+
+/// The simulated robot in its world.
+pub struct QuadrupedSim {
+    config: SimConfig,
+    world: PhysicsWorld,
+    torso: RigidBodyHandle,
+    head: RigidBodyHandle,
+    camera_in_head: Pose,
+    /// Per leg: abduction, hip, knee.
+    joints: Vec<[MultibodyJointHandle; 3]>,
+    torque_limits: Vec<[f64; 3]>,
+    walk: WalkEngine,
+    servos: ServoSetpoints,
+    heading: HeadingKeeper,
+    command_mm_s: f64,
+    steps: u64,
+    start_xy_m: [f64; 2],
+}
+
+impl std::fmt::Debug for QuadrupedSim {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("QuadrupedSim")
+            .field("time_s", &self.time_s())
+            .field("command_mm_s", &self.command_mm_s)
+            .field("config", &self.config)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The torso's pose and motion, from the physics (ground truth).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TorsoState {
+    /// Position, m.
+    pub position_m: [f64; 3],
+    /// Orientation as a unit quaternion `[x, y, z, w]`.
+    pub orientation: [f64; 4],
+    /// Linear velocity, m/s.
+    pub velocity_m_s: [f64; 3],
+    /// The torso's up axis in the world (z component 1 when level).
+    pub up: [f64; 3],
+    /// Heading: the angle of the torso's forward axis about world z, rad.
+    pub yaw_rad: f64,
+}
+
+impl QuadrupedSim {
+    /// Builds the world and stands the robot on the floor at its start.
+    pub fn new(description: &RobotDescription, config: SimConfig) -> Result<Self, SimError> {
+        config.validate()?;
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, 0.0, -9.81);
+        world.integration_parameters.dt = config.dt_s as Real;
+        world.integration_parameters.num_solver_iterations = config.solver_iterations;
+
+        let floor = world
+            .bodies
+            .insert(RigidBodyBuilder::fixed().translation(Vector::new(0.0, 0.0, -0.05)));
+        world.colliders.insert_with_parent(
+            ColliderBuilder::cuboid(50.0, 50.0, 0.05).friction(config.friction as Real),
+            floor,
+            &mut world.bodies,
+        );
+
+        // Stand the robot: torso high enough for the idle stance's feet to touch.
+        let idle = config.walk.gait.idle;
+        let leg = &description.legs[0];
+        let torso_z = idle.body_height_m - leg.hip_in_torso_m[2] + leg.foot_radius_m + 0.002;
+        let start_xy_m = [
+            config.beacon_xy_m[0] - config.start_distance_m,
+            config.beacon_xy_m[1],
+        ];
+        let options = UrdfLoaderOptions {
+            shift: Pose::translation(
+                start_xy_m[0] as Real,
+                start_xy_m[1] as Real,
+                torso_z as Real,
+            ),
+            collider_blueprint: ColliderBuilder::default()
+                .density(0.0)
+                .friction(config.friction as Real),
+            ..Default::default()
+        };
+        let robot = UrdfRobot::from_robot(&description.urdf, options, std::path::Path::new(""));
+        let link_index: Vec<usize> = robot.links.iter().map(|l| l.urdf_link_index).collect();
+        let joint_index: Vec<usize> = robot.joints.iter().map(|j| j.urdf_joint_index).collect();
+        let handles = robot.insert_using_multibody_joints(
+            &mut world.bodies,
+            &mut world.colliders,
+            &mut world.multibody_joints,
+            UrdfMultibodyOptions::DISABLE_SELF_CONTACTS,
+        );
+        let body_of = |name: &str| {
+            let i = description.urdf.links.iter().position(|l| l.name == name)?;
+            let k = link_index.iter().position(|&u| u == i)?;
+            Some(handles.links[k].body)
+        };
+        let joint_of = |name: &str| {
+            let i = description
+                .urdf
+                .joints
+                .iter()
+                .position(|j| j.name == name)?;
+            let k = joint_index.iter().position(|&u| u == i)?;
+            handles.joints[k].joint
+        };
+        // A checked description has these; the loader could still merge them away.
+        let no_link = |link: &str| RobotError::MissingLink { link: link.into() };
+        let torso = body_of("torso").ok_or_else(|| no_link("torso"))?;
+        let head = body_of("head").ok_or_else(|| no_link("head"))?;
+        let mut joints = Vec::new();
+        let mut torque_limits = Vec::new();
+        for leg in &description.legs {
+            let mut h = Vec::new();
+            for name in &leg.joints {
+                h.push(joint_of(name).ok_or_else(|| RobotError::MissingJoint {
+                    joint: name.clone(),
+                })?);
+            }
+            joints.push([h[0], h[1], h[2]]);
+            torque_limits.push(leg.effort_nm.map(|e| e.min(config.servo.max_torque_nm)));
+        }
+
+        let (t, rpy) = description.camera_in_head;
+        let camera_in_head = Pose::from_parts(
+            Vector::new(t[0] as Real, t[1] as Real, t[2] as Real),
+            Rotation::from_euler(
+                rapier3d::glamx::EulerRot::XYZ,
+                rpy[0] as Real,
+                rpy[1] as Real,
+                rpy[2] as Real,
+            ),
+        );
+
+        let mut walk = WalkEngine::new(config.walk, &description.legs);
+        let initial = walk.update(0.0, 0.0, 0.0);
+        let initial_angles: Vec<f64> = initial
+            .iter()
+            .flat_map(|a| {
+                let a = a.unwrap_or_default();
+                [a.abduction, a.hip, a.knee]
+            })
+            .collect();
+
+        let mut sim = Self {
+            config,
+            world,
+            torso,
+            head,
+            camera_in_head,
+            joints,
+            torque_limits,
+            walk,
+            servos: ServoSetpoints::new(initial_angles.clone()),
+            heading: HeadingKeeper::default(),
+            command_mm_s: 0.0,
+            steps: 0,
+            start_xy_m,
+        };
+        sim.pose_joints(&initial_angles);
+        sim.apply_servos();
+        Ok(sim)
+    }
+
+    /// Places the joints at these angles (abduction, hip, knee per leg) before the
+    /// first step, so the robot starts standing rather than falling into its stance.
+    fn pose_joints(&mut self, angles: &[f64]) {
+        let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) else {
+            return;
+        };
+        let mut disp = vec![0.0 as Real; mb.ndofs()];
+        for (leg, handles) in self.joints.iter().enumerate() {
+            for (k, h) in handles.iter().enumerate() {
+                if let Some(link) = self
+                    .world
+                    .multibody_joints
+                    .get(*h)
+                    .and_then(|(mb, id)| mb.link(id))
+                {
+                    disp[link.assembly_id()] = angles[3 * leg + k] as Real;
+                }
+            }
+        }
+        if let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) {
+            mb.apply_displacements(&disp);
+            mb.forward_kinematics(&self.world.bodies, true);
+            mb.update_rigid_bodies(&mut self.world.bodies, false);
+        }
+    }
+
+    /// Writes the servo setpoints into the physics' joint motors.
+    fn apply_servos(&mut self) {
+        let s = self.config.servo;
+        for (leg, handles) in self.joints.iter().enumerate() {
+            for (k, h) in handles.iter().enumerate() {
+                let i = 3 * leg + k;
+                if let Some((mb, id)) = self.world.multibody_joints.get_mut(*h) {
+                    if let Some(link) = mb.link_mut(id) {
+                        let data = &mut link.joint.data;
+                        data.set_motor_model(JointAxis::AngX, MotorModel::ForceBased);
+                        data.set_motor(
+                            JointAxis::AngX,
+                            self.servos.positions()[i] as Real,
+                            self.servos.velocities()[i] as Real,
+                            s.kp_nm_per_rad as Real,
+                            s.kd_nm_s_per_rad as Real,
+                        );
+                        data.set_motor_max_force(
+                            JointAxis::AngX,
+                            self.torque_limits[leg][k] as Real,
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Sets the walk command (a desired velocity in [-300, 300] mm/s by Eq. 1's
+    /// convention; values beyond it extrapolate the gait). Non-finite commands are
+    /// refused.
+    pub fn set_command(&mut self, command_mm_s: f64) -> Result<(), SimConfigError> {
+        if !command_mm_s.is_finite() {
+            return Err(SimConfigError::OutOfRange {
+                key: "command",
+                expected: "finite",
+                value: command_mm_s,
+            });
+        }
+        self.command_mm_s = command_mm_s;
+        Ok(())
+    }
+
+    /// The command set last.
+    pub fn command(&self) -> f64 {
+        self.command_mm_s
+    }
+
+    /// Advances the physics by one timestep (and the robot's controllers when their
+    /// period comes round).
+    pub fn step(&mut self) {
+        if self.steps % self.config.steps_per_command() == 0 {
+            self.control();
+        }
+        self.world.step();
+        self.steps += 1;
+    }
+
+    /// Advances by whole timesteps covering `duration_s`.
+    pub fn advance(&mut self, duration_s: f64) {
+        let n = (duration_s / self.config.dt_s).round() as u64;
+        for _ in 0..n {
+            self.step();
+        }
+    }
+
+    /// One tick of the robot's own control: read the gyro, steer, plan the feet,
+    /// move the servo setpoints.
+    fn control(&mut self) {
+        let period = self.config.servo.command_period_s;
+        let steer = self
+            .heading
+            .update(&self.config.heading, self.gyro_yaw_rate(), period);
+        let targets = self.walk.update(period, self.command_mm_s, steer);
+        let flat: Vec<Option<f64>> = targets
+            .iter()
+            .flat_map(|t: &Option<LegAngles>| {
+                [t.map(|a| a.abduction), t.map(|a| a.hip), t.map(|a| a.knee)]
+            })
+            .collect();
+        self.servos
+            .track(&flat, period, self.config.servo.max_speed_rad_s);
+        self.apply_servos();
+    }
+
+    /// What a yaw-rate gyro on the torso reads: the torso's angular velocity about
+    /// its own up axis, rad/s.
+    fn gyro_yaw_rate(&self) -> f64 {
+        let body = &self.world.bodies[self.torso];
+        let w = body.angvel();
+        let local = body.position().rotation.inverse() * w;
+        f64::from(local.z)
+    }
+
+    /// Simulated time, s.
+    pub fn time_s(&self) -> f64 {
+        self.steps as f64 * self.config.dt_s
+    }
+
+    /// The settings in use.
+    pub fn config(&self) -> &SimConfig {
+        &self.config
+    }
+
+    /// The robot's own heading estimate (from its gyro), rad.
+    pub fn heading_estimate_rad(&self) -> f64 {
+        self.heading.estimate_rad()
+    }
+
+    /// The command in effect after the walk engine's slewing, mm/s.
+    pub fn command_in_effect(&self) -> f64 {
+        self.walk.command_in_effect()
+    }
+
+    /// Ground truth: the torso's state.
+    pub fn torso(&self) -> TorsoState {
+        let body = &self.world.bodies[self.torso];
+        let p = body.position();
+        let v = body.linvel();
+        let up = p.rotation * Vector::Z;
+        let fwd = p.rotation * Vector::X;
+        let q = p.rotation;
+        TorsoState {
+            position_m: [p.translation.x, p.translation.y, p.translation.z].map(f64::from),
+            orientation: [q.x, q.y, q.z, q.w].map(f64::from),
+            velocity_m_s: [v.x, v.y, v.z].map(f64::from),
+            up: [up.x, up.y, up.z].map(f64::from),
+            yaw_rad: f64::from(fwd.y.atan2(fwd.x)),
+        }
+    }
+
+    /// Ground truth: the torso's distance to the beacon measured along the line of
+    /// approach (the line from the beacon through the start), m.
+    pub fn distance_along_line_m(&self) -> f64 {
+        let p = self.torso().position_m;
+        self.config.beacon_xy_m[0] - p[0]
+    }
+
+    /// Ground truth: how far the torso is off the line of approach, m (left positive).
+    pub fn lateral_offset_m(&self) -> f64 {
+        self.torso().position_m[1] - self.start_xy_m[1]
+    }
+
+    /// Ground truth: the camera's pose in the world (optical axis +x, image up +z).
+    pub fn camera_pose(&self) -> Pose {
+        *self.world.bodies[self.head].position() * self.camera_in_head
+    }
+
+    /// The physics world, read-only (for rendering and sensors).
+    pub fn world(&self) -> &PhysicsWorld {
+        &self.world
+    }
+}

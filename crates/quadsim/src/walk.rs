@@ -1,0 +1,104 @@
+//! The walk engine: turns a walk command into twelve joint targets, the way the
+//! robot's own motion module would. The command sets the gait parameters by Eq. 1;
+//! a change of command is slewed so the feet never jump; a trot clock places each
+//! foot on its locus; inverse kinematics turns feet into angles.
+
+use crate::description::LegDescription;
+use crate::gait::{FootTarget, GaitClock, GaitTable, foot_target};
+use crate::ik::{self, LegAngles, LegGeometry};
+
+/// Settings of the walk engine beyond the gait table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WalkConfig {
+    /// The three parameter vectors and Eq. 1's speeds.
+    pub gait: GaitTable,
+    /// How fast the command in effect may change, (mm/s) per s.
+    pub command_slew_mm_s2: f64,
+    /// Time over which stepping ramps in from standing at the start, s.
+    pub start_ramp_s: f64,
+}
+
+impl Default for WalkConfig {
+    fn default() -> Self {
+        Self {
+            gait: GaitTable::default(),
+            command_slew_mm_s2: 1500.0,
+            start_ramp_s: 1.0,
+        }
+    }
+}
+
+/// Per-leg constants: where the hip is, how the leg bends, its trot phase.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Leg {
+    geometry: LegGeometry,
+    side: f64,
+    phase_offset: f64,
+}
+
+/// The walk engine's state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WalkEngine {
+    config: WalkConfig,
+    legs: Vec<Leg>,
+    clock: GaitClock,
+    command_mm_s: f64,
+    elapsed_s: f64,
+}
+
+impl WalkEngine {
+    /// An engine for these legs (front knees bend like elbows, hind like knees;
+    /// diagonal pairs step together).
+    pub fn new(config: WalkConfig, legs: &[LegDescription]) -> Self {
+        let legs = legs
+            .iter()
+            .map(|l| {
+                let front = l.is_front();
+                Leg {
+                    geometry: l.geometry(if front { -1.0 } else { 1.0 }),
+                    side: l.side(),
+                    // fl with hr, fr with hl.
+                    phase_offset: if front == (l.side() > 0.0) { 0.0 } else { 0.5 },
+                }
+            })
+            .collect();
+        Self {
+            config,
+            legs,
+            clock: GaitClock::default(),
+            command_mm_s: 0.0,
+            elapsed_s: 0.0,
+        }
+    }
+
+    /// The command in effect after slewing, mm/s.
+    pub fn command_in_effect(&self) -> f64 {
+        self.command_mm_s
+    }
+
+    /// Advances by `dt_s` towards `command_mm_s`, turning by `steer_m` (positive:
+    /// left, as a difference of step lengths between the sides), and returns the
+    /// joint targets for every leg, or `None` for a leg whose foot is out of reach.
+    pub fn update(&mut self, dt_s: f64, command_mm_s: f64, steer_m: f64) -> Vec<Option<LegAngles>> {
+        let max_change = self.config.command_slew_mm_s2 * dt_s;
+        self.command_mm_s += (command_mm_s - self.command_mm_s).clamp(-max_change, max_change);
+        self.elapsed_s += dt_s;
+        let ramp = if self.config.start_ramp_s > 0.0 {
+            (self.elapsed_s / self.config.start_ramp_s).min(1.0)
+        } else {
+            1.0
+        };
+        let mut p = self.config.gait.params_for(self.command_mm_s);
+        p.step_height_m *= ramp;
+        self.clock.advance(dt_s, p.period_s);
+        self.legs
+            .iter()
+            .map(|leg| {
+                let step = ramp * (p.step_length_m - leg.side * steer_m);
+                let phase = (self.clock.phase() + leg.phase_offset).fract();
+                let FootTarget { x, outwards, z } = foot_target(&p, step, phase);
+                ik::inverse(&leg.geometry, [x, leg.side * outwards, z])
+            })
+            .collect()
+    }
+}
