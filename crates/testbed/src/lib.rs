@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod measure;
 pub mod metrics;
 pub mod seeds;
 pub mod synthetic;

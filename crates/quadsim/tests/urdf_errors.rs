@@ -1,0 +1,117 @@
+//! A malformed or incomplete robot description gives an error that names what is
+//! wrong; the shipped description loads.
+
+use quadsim::{ERS7_URDF, RobotDescription, RobotError};
+
+fn load(text: &str) -> Result<RobotDescription, RobotError> {
+    RobotDescription::from_urdf_str(text)
+}
+
+#[test]
+fn the_shipped_robot_loads_with_its_real_proportions() {
+    let d = load(ERS7_URDF).expect("valid");
+    assert!(
+        (d.total_mass_kg - 1.6).abs() < 0.05,
+        "mass {}",
+        d.total_mass_kg
+    );
+    assert_eq!(d.legs.len(), 4);
+    for leg in &d.legs {
+        assert!((leg.thigh_m - 0.07).abs() < 0.01 && (leg.shank_m - 0.07).abs() < 0.01);
+    }
+}
+
+fn expect_error(text: &str, needle: &str) {
+    let err = load(text).expect_err("must be refused");
+    let msg = err.to_string();
+    assert!(msg.contains(needle), "`{msg}` should mention `{needle}`");
+}
+
+#[test]
+fn not_xml_is_a_parse_error() {
+    expect_error("<robot name='x'><link name=", "malformed URDF");
+}
+
+#[test]
+fn a_missing_camera_frame_is_named() {
+    let text = ERS7_URDF
+        .replace(r#"<link name="camera"/>"#, "")
+        .replace(
+            r#"<joint name="camera_mount" type="fixed"><parent link="head"/><child link="camera"/><origin xyz="0.041 0 0.005" rpy="0 0 0"/></joint>"#,
+            "",
+        );
+    expect_error(&text, "`camera`");
+}
+
+#[test]
+fn a_camera_not_on_the_head_is_refused() {
+    let text = ERS7_URDF.replace(
+        r#"<parent link="head"/><child link="camera"/>"#,
+        r#"<parent link="torso"/><child link="camera"/>"#,
+    );
+    expect_error(&text, "`camera` link must be fixed directly to `head`");
+}
+
+#[test]
+fn a_missing_joint_is_named() {
+    let text = ERS7_URDF.replace(r#"joint name="hr_knee""#, r#"joint name="hr_knee_typo""#);
+    expect_error(&text, "`hr_knee`");
+}
+
+#[test]
+fn a_joint_to_a_missing_link_is_named() {
+    let text = ERS7_URDF.replace(r#"<child link="fl_shank"/>"#, r#"<child link="fl_shin"/>"#);
+    expect_error(&text, "`fl_shin`");
+}
+
+#[test]
+fn a_wrong_joint_type_or_axis_is_named() {
+    let text = ERS7_URDF.replace(
+        r#"joint name="fr_hip" type="revolute""#,
+        r#"joint name="fr_hip" type="continuous""#,
+    );
+    expect_error(&text, "`fr_hip`: must be revolute");
+    let text = ERS7_URDF.replacen(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 0 1"/>"#, 1);
+    expect_error(&text, "`fl_hip`: axis must be");
+}
+
+#[test]
+fn inverted_limits_are_named() {
+    let text = ERS7_URDF.replacen(
+        r#"lower="-2.4" upper="2.4""#,
+        r#"lower="2.4" upper="-2.4""#,
+        1,
+    );
+    expect_error(&text, "`fl_knee`: limits");
+}
+
+#[test]
+fn a_link_with_no_mass_is_named() {
+    let text = ERS7_URDF.replacen(r#"<mass value="0.06"/>"#, r#"<mass value="-1"/>"#, 1);
+    expect_error(&text, "`fl_thigh`");
+}
+
+#[test]
+fn a_leg_without_a_foot_is_named() {
+    let text = ERS7_URDF.replacen(
+        r#"<geometry><sphere radius="0.012"/></geometry>"#,
+        r#"<geometry><box size="0.02 0.02 0.02"/></geometry>"#,
+        1,
+    );
+    expect_error(&text, "`fl_shank` needs one sphere collision as its foot");
+}
+
+#[test]
+fn a_link_with_two_parents_is_refused() {
+    let text = ERS7_URDF.replace(
+        "</robot>",
+        r#"<joint name="extra" type="fixed"><parent link="torso"/><child link="hr_shank"/><origin xyz="0 0 0" rpy="0 0 0"/></joint></robot>"#,
+    );
+    expect_error(&text, "`hr_shank` is not in one tree");
+}
+
+#[test]
+fn a_missing_file_names_the_path() {
+    let err = RobotDescription::from_file("/nonexistent/robot.urdf").expect_err("no file");
+    assert!(err.to_string().contains("/nonexistent/robot.urdf"));
+}

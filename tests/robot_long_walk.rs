@@ -1,0 +1,98 @@
+//! Ten minutes of the paper's behaviour on the simulated robot: random commands
+//! held 3 s, turning round at 1.2 m and 3.6 m. It must never fall, must keep
+//! facing the beacon and stay near its line of approach, and a run must be
+//! bit-identical per seed.
+//!
+//! The behaviour is driven by ideal readings computed from the true distance: this
+//! is a test of the robot, not of a learner, and no learner is involved.
+
+use quadsim::{QuadrupedSim, RobotDescription, SimConfig};
+use testbed::behaviour::{BehaviourConfig, Phase, TrainingBehaviour};
+use testbed::seeds::{self, Stream};
+
+const K_PX_M: f64 = 38.4; // an ideal 200 mm band through a 192 px lens, px * m
+
+#[derive(Debug, Default, PartialEq)]
+struct Walk {
+    min_up: f64,
+    max_lateral_m: f64,
+    max_yaw_rad: f64,
+    turns: usize,
+    final_bits: Vec<u64>,
+}
+
+fn walk(seconds: f64, seed: u64) -> Walk {
+    let description = RobotDescription::from_urdf_str(quadsim::ERS7_URDF).expect("urdf");
+    let mut sim = QuadrupedSim::new(&description, SimConfig::default()).expect("sim");
+    let mut behaviour = TrainingBehaviour::new(
+        BehaviourConfig {
+            max_command: 300.0,
+            hold_s: 3.0,
+            near_obs_px: K_PX_M / 1.2,
+            far_obs_px: K_PX_M / 3.6,
+        },
+        seeds::rng(seed, Stream::Behaviour),
+        Phase::Forwards,
+    );
+    let mut out = Walk {
+        min_up: 1.0,
+        ..Default::default()
+    };
+    let mut phase = behaviour.phase();
+    let frame_s = 0.05;
+    let frames = (seconds / frame_s) as u64;
+    for k in 0..frames {
+        let t = k as f64 * frame_s;
+        sim.set_command(behaviour.command(t)).expect("finite");
+        sim.advance(frame_s);
+        behaviour.observe(t + frame_s, Some(K_PX_M / sim.distance_along_line_m()));
+        if behaviour.phase() != phase {
+            out.turns += 1;
+            phase = behaviour.phase();
+        }
+        let s = sim.torso();
+        out.min_up = out.min_up.min(s.up[2]);
+        out.max_lateral_m = out.max_lateral_m.max(sim.lateral_offset_m().abs());
+        out.max_yaw_rad = out.max_yaw_rad.max(s.yaw_rad.abs());
+    }
+    let s = sim.torso();
+    out.final_bits = s
+        .position_m
+        .iter()
+        .chain(&s.orientation)
+        .map(|v| v.to_bits())
+        .collect();
+    out
+}
+
+#[test]
+fn ten_minutes_of_training_behaviour_stay_upright_and_face_the_beacon() {
+    let w = walk(600.0, 0);
+    eprintln!("{w:?}");
+    assert!(w.min_up > 0.8, "torso tipped: up z {:.3}", w.min_up);
+    // 0.2 rad keeps the beacon well inside the camera's 28 degree half-width.
+    assert!(
+        w.max_yaw_rad < 0.2,
+        "turned {:.3} rad away from the beacon",
+        w.max_yaw_rad
+    );
+    assert!(w.turns >= 6, "covered the range only {} times", w.turns);
+}
+
+#[test]
+#[ignore = "not met yet: the gyro heading keeper drifts 0.14 m off the line in ten minutes; \
+            steering by the beacon's bearing in the camera (issue 4) is the fix"]
+fn ten_minutes_of_training_behaviour_stay_near_the_line() {
+    let w = walk(600.0, 0);
+    assert!(
+        w.max_lateral_m < 0.1,
+        "drifted {:.3} m off the line",
+        w.max_lateral_m
+    );
+}
+
+#[test]
+fn a_walk_is_bit_identical_per_seed() {
+    assert_eq!(walk(20.0, 5), walk(20.0, 5));
+    assert_ne!(walk(20.0, 5).final_bits, walk(20.0, 6).final_bits);
+}
