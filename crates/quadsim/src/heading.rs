@@ -1,46 +1,82 @@
-//! Keeping the robot facing its line: a yaw-rate sensor (as a gyro on the torso
-//! would give) integrated into a heading estimate, and a small steering correction
-//! back towards the heading the robot started with. It never sees the true pose.
+//! Keeping the robot facing the beacon, from what the robot itself senses: its
+//! inertial unit's attitude (the gyro's rate vector integrated, as an attitude
+//! filter does) gives its heading, and the beacon's bearing in the camera, when a
+//! frame shows it, says which way to turn to keep the beacon centred. Without a
+//! bearing it holds the heading it started with. It never sees the true pose.
+
+use rapier3d::math::{Rotation, Vector};
 
 /// Settings of the heading keeper.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeadingConfig {
-    /// Steering (difference of step lengths, m) per radian of heading error.
+    /// Turning (difference of step lengths, m) per radian of heading error.
     pub gain_m_per_rad: f64,
-    /// Largest steering correction, m.
+    /// Largest turning correction, m.
     pub max_steer_m: f64,
 }
 
 impl Default for HeadingConfig {
     fn default() -> Self {
         Self {
-            gain_m_per_rad: 0.2,
+            gain_m_per_rad: 0.4,
             max_steer_m: 0.02,
         }
     }
 }
 
-/// The heading estimate and the correction it asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// The robot's attitude estimate and the latest bearing of the beacon.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HeadingKeeper {
-    estimate_rad: f64,
+    attitude: Rotation,
+    bearing_rad: Option<f64>,
+}
+
+impl Default for HeadingKeeper {
+    fn default() -> Self {
+        Self {
+            attitude: Rotation::IDENTITY,
+            bearing_rad: None,
+        }
+    }
 }
 
 impl HeadingKeeper {
-    /// Integrates a yaw-rate reading over `dt_s` (as an inertial unit does, at its
-    /// own rate, however often the walk engine asks).
-    pub fn integrate(&mut self, yaw_rate_rad_s: f64, dt_s: f64) {
-        self.estimate_rad += yaw_rate_rad_s * dt_s;
+    /// Integrates the gyro's rate vector (rad/s, body frame) over `dt_s`.
+    /// Integrating only a yaw rate drifts from the true heading as the trotting
+    /// torso rolls and pitches; the full attitude does not.
+    pub fn integrate(&mut self, body_rate: [f64; 3], dt_s: f64) {
+        let w = Vector::new(
+            body_rate[0] as f32,
+            body_rate[1] as f32,
+            body_rate[2] as f32,
+        );
+        let rate = w.length();
+        if rate > 0.0 {
+            let step = Rotation::from_axis_angle(w / rate, rate * dt_s as f32);
+            self.attitude = (self.attitude * step).normalize();
+        }
     }
 
-    /// The steering correction (positive: turn left) that brings the heading back
-    /// to zero.
-    pub fn steer(&self, config: &HeadingConfig) -> f64 {
-        (-config.gain_m_per_rad * self.estimate_rad).clamp(-config.max_steer_m, config.max_steer_m)
+    /// Takes the beacon's bearing in the latest frame (rad, left positive), or
+    /// `None` when the frame did not show it.
+    pub fn observe_bearing(&mut self, bearing_rad: Option<f64>) {
+        self.bearing_rad = bearing_rad;
     }
 
-    /// The robot's own estimate of its heading, rad (0 = facing the beacon at the start).
+    /// The robot's own estimate of its heading, rad (0 = facing the beacon at the
+    /// start).
     pub fn estimate_rad(&self) -> f64 {
-        self.estimate_rad
+        let f = self.attitude * Vector::X;
+        f64::from(f.y.atan2(f.x))
+    }
+
+    /// The turning correction (positive: left) that centres the beacon, or holds
+    /// the starting heading while the beacon is not in view.
+    pub fn steer(&self, config: &HeadingConfig) -> f64 {
+        let error = match self.bearing_rad {
+            Some(bearing) => bearing,
+            None => -self.estimate_rad(),
+        };
+        (config.gain_m_per_rad * error).clamp(-config.max_steer_m, config.max_steer_m)
     }
 }

@@ -11,6 +11,8 @@
 //! along the line of approach) for testbeds and tests; a learner must never see it.
 #![warn(missing_docs)]
 
+pub mod beacon;
+pub mod camera;
 pub mod description;
 pub mod error;
 pub mod gait;
@@ -18,11 +20,13 @@ pub mod heading;
 pub mod ik;
 pub mod servo;
 pub mod sim;
+pub mod vision;
 pub mod walk;
 
 pub use description::{LEG_NAMES, RobotDescription};
 pub use error::{RobotError, SimConfigError, SimError};
 pub use sim::{QuadrupedSim, SimConfig, TorsoState};
+pub use vision::{CameraConfig, Frame, NoReading};
 
 /// The default robot description shipped in `assets/ers7.urdf`.
 pub const ERS7_URDF: &str = include_str!("../../../assets/ers7.urdf");

@@ -9,12 +9,15 @@ use rapier3d::pipeline::PhysicsWorld;
 use rapier3d::prelude::RigidBodyBuilder;
 use rapier3d_urdf::{UrdfLoaderOptions, UrdfMultibodyOptions, UrdfRobot};
 
+use crate::beacon::BeaconConfig;
 use crate::description::RobotDescription;
 use crate::error::{RobotError, SimConfigError, SimError};
 use crate::heading::{HeadingConfig, HeadingKeeper};
 use crate::ik::LegAngles;
 use crate::servo::{ServoConfig, ServoSetpoints};
+use crate::vision::{Camera, CameraConfig, Frame};
 use crate::walk::{WalkConfig, WalkEngine};
+use rapier3d::geometry::ColliderHandle;
 
 /// Settings of one simulated world.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,8 +34,10 @@ pub struct SimConfig {
     pub walk: WalkConfig,
     /// The heading keeper.
     pub heading: HeadingConfig,
-    /// Where the beacon stands on the floor, m (world frame, z up).
-    pub beacon_xy_m: [f64; 2],
+    /// The beacon.
+    pub beacon: BeaconConfig,
+    /// The head's camera.
+    pub camera: CameraConfig,
     /// How far from the beacon the robot starts, facing it along +x, m.
     pub start_distance_m: f64,
 }
@@ -48,7 +53,8 @@ impl Default for SimConfig {
             servo: ServoConfig::default(),
             walk: WalkConfig::default(),
             heading: HeadingConfig::default(),
-            beacon_xy_m: [0.0, 0.0],
+            beacon: BeaconConfig::default(),
+            camera: CameraConfig::default(),
             start_distance_m: 2.4,
         }
     }
@@ -57,7 +63,8 @@ impl Default for SimConfig {
 impl SimConfig {
     /// Checks every value's range.
     pub fn validate(&self) -> Result<(), SimConfigError> {
-        let checks: [(&'static str, f64, bool, &'static str); 9] = [
+        let (b, c) = (&self.beacon, &self.camera);
+        let checks: [(&'static str, f64, bool, &'static str); 17] = [
             (
                 "physics.dt",
                 self.dt_s,
@@ -112,7 +119,52 @@ impl SimConfig {
                 self.start_distance_m > 0.3,
                 "> 0.3 m",
             ),
+            ("beacon.radius", b.radius_m, b.radius_m > 0.0, "> 0 m"),
+            (
+                "beacon.band_bottom",
+                b.band_bottom_m,
+                b.band_bottom_m >= 0.0,
+                ">= 0 m",
+            ),
+            (
+                "beacon.band_top",
+                b.band_top_m,
+                b.band_top_m > b.band_bottom_m,
+                "> beacon.band_bottom",
+            ),
+            (
+                "camera.width",
+                f64::from(c.intrinsics.width_px),
+                c.intrinsics.width_px >= 8,
+                ">= 8 px",
+            ),
+            (
+                "camera.height",
+                f64::from(c.intrinsics.height_px),
+                c.intrinsics.height_px >= 8,
+                ">= 8 px",
+            ),
+            (
+                "camera.hfov",
+                c.intrinsics.hfov_deg,
+                c.intrinsics.hfov_deg > 0.0 && c.intrinsics.hfov_deg < 170.0,
+                "in (0, 170) degrees",
+            ),
+            (
+                "camera.vfov",
+                c.intrinsics.vfov_deg,
+                c.intrinsics.vfov_deg > 0.0 && c.intrinsics.vfov_deg < 170.0,
+                "in (0, 170) degrees",
+            ),
+            ("camera.noise_px", c.noise_px, c.noise_px >= 0.0, ">= 0 px"),
         ];
+        if !(c.frame_period_s.is_finite() && c.frame_period_s >= self.dt_s) {
+            return Err(SimConfigError::OutOfRange {
+                key: "camera.frame_period",
+                expected: ">= physics.dt",
+                value: c.frame_period_s,
+            });
+        }
         for (key, value, ok, expected) in checks {
             if !(ok && value.is_finite()) {
                 return Err(SimConfigError::OutOfRange {
@@ -146,6 +198,11 @@ pub struct QuadrupedSim {
     command_mm_s: f64,
     steps: u64,
     start_xy_m: [f64; 2],
+    band: ColliderHandle,
+    camera: Camera,
+    frames_taken: u64,
+    latest_frame: Option<Frame>,
+    fresh_frame: bool,
 }
 
 impl std::fmt::Debug for QuadrupedSim {
@@ -195,9 +252,10 @@ impl QuadrupedSim {
         let idle = config.walk.gait.idle;
         let leg = &description.legs[0];
         let torso_z = idle.body_height_m - leg.hip_in_torso_m[2] + leg.foot_radius_m + 0.002;
+        let band = config.beacon.insert(&mut world);
         let start_xy_m = [
-            config.beacon_xy_m[0] - config.start_distance_m,
-            config.beacon_xy_m[1],
+            config.beacon.xy_m[0] - config.start_distance_m,
+            config.beacon.xy_m[1],
         ];
         let options = UrdfLoaderOptions {
             shift: Pose::translation(
@@ -285,6 +343,11 @@ impl QuadrupedSim {
             command_mm_s: 0.0,
             steps: 0,
             start_xy_m,
+            band,
+            camera: Camera::new(config.camera),
+            frames_taken: 0,
+            latest_frame: None,
+            fresh_frame: false,
         };
         sim.pose_joints(&initial_angles);
         sim.apply_servos();
@@ -371,9 +434,40 @@ impl QuadrupedSim {
             self.control();
         }
         self.world.step();
-        self.heading
-            .integrate(self.gyro_yaw_rate(), self.config.dt_s);
+        self.heading.integrate(self.gyro(), self.config.dt_s);
         self.steps += 1;
+        // Frames come at their own rate: the first at one frame period, then
+        // whenever simulated time reaches the next multiple of it.
+        let next_frame_s = (self.frames_taken + 1) as f64 * self.config.camera.frame_period_s;
+        if self.time_s() + 0.5 * self.config.dt_s >= next_frame_s {
+            self.frames_taken += 1;
+            let pose = self.camera_pose();
+            let frame = self.camera.capture(
+                next_frame_s,
+                &self.world,
+                &pose,
+                &self.config.beacon,
+                self.band,
+            );
+            self.heading.observe_bearing(frame.bearing_rad);
+            self.latest_frame = Some(frame);
+            self.fresh_frame = true;
+        }
+    }
+
+    /// The frame taken since the last call, if any (the host's 20 Hz readings).
+    pub fn take_frame(&mut self) -> Option<Frame> {
+        if self.fresh_frame {
+            self.fresh_frame = false;
+            self.latest_frame
+        } else {
+            None
+        }
+    }
+
+    /// The band's collider in the world (for rendering what the camera sees).
+    pub fn band_collider(&self) -> ColliderHandle {
+        self.band
     }
 
     /// Advances by whole timesteps covering `duration_s`.
@@ -401,12 +495,11 @@ impl QuadrupedSim {
         self.apply_servos();
     }
 
-    /// What the torso's inertial unit reports as yaw rate: the rate of turn about
-    /// the vertical (its gyro, resolved along the gravity direction its
-    /// accelerometer finds), rad/s. Integrating the gyro's own z axis instead
-    /// drifts from the true heading as the trotting torso rolls and pitches.
-    fn gyro_yaw_rate(&self) -> f64 {
-        f64::from(self.world.bodies[self.torso].angvel().z)
+    /// What the torso's gyro reads: its angular velocity in its own frame, rad/s.
+    fn gyro(&self) -> [f64; 3] {
+        let body = &self.world.bodies[self.torso];
+        let w = body.position().rotation.inverse() * body.angvel();
+        [w.x, w.y, w.z].map(f64::from)
     }
 
     /// Simulated time, s.
@@ -450,7 +543,7 @@ impl QuadrupedSim {
     /// approach (the line from the beacon through the start), m.
     pub fn distance_along_line_m(&self) -> f64 {
         let p = self.torso().position_m;
-        self.config.beacon_xy_m[0] - p[0]
+        self.config.beacon.xy_m[0] - p[0]
     }
 
     /// Ground truth: how far the torso is off the line of approach, m (left positive).

@@ -92,6 +92,77 @@ pub fn time_command(
     })
 }
 
+/// The stand-and-read protocol's result at one distance.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeasuredReading {
+    /// Distance from the beacon, mm (torso centre, along the line).
+    pub distance_mm: f64,
+    /// Mean of the readings, px.
+    pub obs_px: f64,
+    /// Their standard deviation, px.
+    pub std_px: f64,
+    /// Frames without a reading (they are not in the mean).
+    pub missed: usize,
+}
+
+/// The paper's 13 distances: 1.2, 1.4, ..., 3.6 m.
+pub fn paper_distances_m() -> Vec<f64> {
+    (0..13).map(|k| 1.2 + 0.2 * f64::from(k)).collect()
+}
+
+/// Stands the robot (idle gait) at `distance_m` and averages `readings` camera
+/// readings, after `settle_s` of standing.
+pub fn read_at(
+    description: &RobotDescription,
+    sim_config: SimConfig,
+    distance_m: f64,
+    readings: usize,
+    settle_s: f64,
+) -> Result<MeasuredReading, SimError> {
+    let config = SimConfig {
+        start_distance_m: distance_m,
+        ..sim_config
+    };
+    let mut sim = QuadrupedSim::new(description, config)?;
+    sim.advance(settle_s);
+    let (mut obs, mut missed) = (Vec::with_capacity(readings), 0);
+    // Bounded: a beacon that is never seen must not hang the protocol.
+    let max_frames = 4 * readings;
+    let mut frames = 0;
+    while obs.len() < readings && frames < max_frames {
+        sim.step();
+        if let Some(f) = sim.take_frame() {
+            frames += 1;
+            match f.obs_px {
+                Ok(o) => obs.push(o),
+                Err(_) => missed += 1,
+            }
+        }
+    }
+    let n = obs.len().max(1) as f64;
+    let mean = obs.iter().sum::<f64>() / n;
+    let std = (obs.iter().map(|o| (o - mean).powi(2)).sum::<f64>() / n).sqrt();
+    Ok(MeasuredReading {
+        distance_mm: 1000.0 * distance_m,
+        obs_px: if obs.is_empty() { f64::NAN } else { mean },
+        std_px: std,
+        missed,
+    })
+}
+
+/// The stand-and-read protocol at every distance, in parallel, in the order given.
+pub fn measure_sensor(
+    description: &RobotDescription,
+    sim_config: SimConfig,
+    distances_m: &[f64],
+    readings: usize,
+) -> Result<Vec<MeasuredReading>, SimError> {
+    distances_m
+        .par_iter()
+        .map(|&d| read_at(description, sim_config, d, readings, 1.0))
+        .collect()
+}
+
 /// The paper's 31 commands: every multiple of 20 in [-300, 300].
 pub fn paper_commands() -> Vec<f64> {
     (-15..=15).map(|k| 20.0 * f64::from(k)).collect()

@@ -1,0 +1,251 @@
+//! What the head's camera sees of the beacon: which pixels' rays meet the band
+//! first (ray casts into the physics world, so anything in the way occludes it),
+//! the blob's vertical extent as the reading, and the band's bearing.
+
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use rapier3d::geometry::{ColliderHandle, Ray};
+use rapier3d::math::{Pose, Real, Vector};
+use rapier3d::pipeline::{PhysicsWorld, QueryFilter};
+
+use crate::beacon::BeaconConfig;
+use crate::camera::CameraIntrinsics;
+
+/// The camera's settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CameraConfig {
+    /// Pinhole intrinsics.
+    pub intrinsics: CameraIntrinsics,
+    /// Standard deviation of Gaussian noise added to each reading, px.
+    pub noise_px: f64,
+    /// Time between frames, s (20 Hz on the Aibo).
+    pub frame_period_s: f64,
+    /// Seed of the reading noise's random stream.
+    pub noise_seed: u64,
+}
+
+impl Default for CameraConfig {
+    fn default() -> Self {
+        Self {
+            intrinsics: CameraIntrinsics::default(),
+            noise_px: 1.0,
+            frame_period_s: 0.05,
+            noise_seed: 0,
+        }
+    }
+}
+
+/// The band as the image shows it, before noise.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandBlob {
+    /// Pixels `(col, row)` whose rays meet the band first.
+    pub pixels: Vec<(u32, u32)>,
+    /// Topmost and bottommost rows.
+    pub rows: [u32; 2],
+    /// Leftmost and rightmost columns.
+    pub cols: [u32; 2],
+}
+
+impl BandBlob {
+    /// Vertical extent, px.
+    pub fn extent_px(&self) -> f64 {
+        f64::from(self.rows[1] - self.rows[0] + 1)
+    }
+
+    /// Mean column position (pixel centres), px.
+    pub fn mean_column(&self) -> f64 {
+        self.pixels
+            .iter()
+            .map(|&(c, _)| f64::from(c) + 0.5)
+            .sum::<f64>()
+            / self.pixels.len() as f64
+    }
+}
+
+/// Why a frame has no reading.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NoReading {
+    /// The band is behind the camera or outside the image.
+    OutOfView,
+    /// The band reaches the image border, so its extent is unknown.
+    CutByBorder,
+    /// Something stands between the camera and part of the band.
+    Occluded,
+}
+
+/// One camera frame's result.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// When it was taken, s.
+    pub t_s: f64,
+    /// The beacon's height in the image, px (noise included), or why there is none.
+    pub obs_px: Result<f64, NoReading>,
+    /// The band's horizontal bearing (rad, left positive), when it is seen.
+    pub bearing_rad: Option<f64>,
+}
+
+/// Finds the band's pixels in the image of a camera at `camera_pose`: a pixel
+/// shows the band when its ray meets the band (exactly, analytically) and nothing
+/// else in the physics world first.
+pub fn find_band(
+    world: &PhysicsWorld,
+    camera_pose: &Pose,
+    intrinsics: &CameraIntrinsics,
+    beacon: &BeaconConfig,
+    band: ColliderHandle,
+) -> Result<BandBlob, NoReading> {
+    // The band's silhouette lies within the projections of its rims.
+    let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+    for k in 0..24 {
+        let a = f64::from(k) * core::f64::consts::TAU / 24.0;
+        for z in [beacon.band_bottom_m, beacon.band_top_m] {
+            let w = Vector::new(
+                (beacon.xy_m[0] + beacon.radius_m * a.cos()) as Real,
+                (beacon.xy_m[1] + beacon.radius_m * a.sin()) as Real,
+                z as Real,
+            );
+            let c = camera_pose.inverse_transform_point(w);
+            let [u, v] = intrinsics
+                .project([c.x, c.y, c.z].map(f64::from))
+                .ok_or(NoReading::OutOfView)?;
+            lo = [lo[0].min(u), lo[1].min(v)];
+            hi = [hi[0].max(u), hi[1].max(v)];
+        }
+    }
+    let (w, h) = (intrinsics.width_px, intrinsics.height_px);
+    let clamp = |x: f64, n: u32| (x.max(0.0) as u32).min(n - 1);
+    let (c0, c1) = (clamp(lo[0].floor() - 1.0, w), clamp(hi[0].ceil() + 1.0, w));
+    let (r0, r1) = (clamp(lo[1].floor() - 1.0, h), clamp(hi[1].ceil() + 1.0, h));
+
+    let beacon_body = world.colliders[band].parent();
+    let o = camera_pose.translation;
+    let origin = [o.x, o.y, o.z].map(f64::from);
+    let max_toi: Real = 1e3;
+    let mut pixels = Vec::new();
+    for row in r0..=r1 {
+        for col in c0..=c1 {
+            let [x, y, z] = intrinsics.pixel_ray(col, row).map(|v| v as Real);
+            let d = (camera_pose.rotation * Vector::new(x, y, z)).normalize();
+            let dir = [d.x, d.y, d.z].map(f64::from);
+            let Some(band_t) = beacon.ray_hits_band(origin, dir) else {
+                continue;
+            };
+            // Only something other than the beacon itself (its pole's top face
+            // coincides with the band's bottom face) can hide the band.
+            let first = world.cast_ray(&Ray::new(o, d), max_toi, true, QueryFilter::default());
+            match first {
+                Some((hit, t))
+                    if world.colliders[hit].parent() != beacon_body
+                        && f64::from(t) < band_t - 1e-4 =>
+                {
+                    return Err(NoReading::Occluded);
+                }
+                _ => pixels.push((col, row)),
+            }
+        }
+    }
+    if pixels.is_empty() {
+        return Err(NoReading::OutOfView);
+    }
+    let rows = [
+        pixels.iter().map(|p| p.1).min().unwrap_or(0),
+        pixels.iter().map(|p| p.1).max().unwrap_or(0),
+    ];
+    let cols = [
+        pixels.iter().map(|p| p.0).min().unwrap_or(0),
+        pixels.iter().map(|p| p.0).max().unwrap_or(0),
+    ];
+    if rows[0] == 0 || cols[0] == 0 || rows[1] == h - 1 || cols[1] == w - 1 {
+        return Err(NoReading::CutByBorder);
+    }
+    Ok(BandBlob { pixels, rows, cols })
+}
+
+/// The camera: finds the band and turns it into a noisy reading and a bearing.
+#[derive(Debug, Clone)]
+pub struct Camera {
+    config: CameraConfig,
+    noise: Normal<f64>,
+    rng: ChaCha8Rng,
+}
+
+impl Camera {
+    /// A camera with its own noise stream. The config must have been checked
+    /// (finite, non-negative noise).
+    pub(crate) fn new(config: CameraConfig) -> Self {
+        use rand::SeedableRng;
+        let noise = Normal::new(0.0, config.noise_px).unwrap_or_else(|_| {
+            Normal::new(0.0, 0.0).unwrap_or_else(|_| unreachable!("zero spread is valid"))
+        });
+        Self {
+            config,
+            noise,
+            rng: ChaCha8Rng::seed_from_u64(config.noise_seed),
+        }
+    }
+
+    /// The settings in use.
+    pub fn config(&self) -> &CameraConfig {
+        &self.config
+    }
+
+    /// Takes one frame at `t_s`.
+    pub(crate) fn capture(
+        &mut self,
+        t_s: f64,
+        world: &PhysicsWorld,
+        camera_pose: &Pose,
+        beacon: &BeaconConfig,
+        band: ColliderHandle,
+    ) -> Frame {
+        let intr = &self.config.intrinsics;
+        match find_band(world, camera_pose, intr, beacon, band) {
+            Ok(blob) => {
+                let obs = blob.extent_px() + self.noise.sample(&mut self.rng);
+                Frame {
+                    t_s,
+                    obs_px: if obs > 0.5 {
+                        Ok(obs)
+                    } else {
+                        Err(NoReading::OutOfView)
+                    },
+                    bearing_rad: Some(intr.bearing_of_column(blob.mean_column())),
+                }
+            }
+            Err(why) => Frame {
+                t_s,
+                obs_px: Err(why),
+                bearing_rad: None,
+            },
+        }
+    }
+}
+
+/// An RGB image (row-major, 3 bytes a pixel) of what the camera saw: a plain grey
+/// background, the band's pixels in orange, and the measured extent marked by two
+/// green lines across the blob's top and bottom rows.
+pub fn render_rgb(intrinsics: &CameraIntrinsics, blob: Option<&BandBlob>) -> Vec<u8> {
+    let (w, h) = (intrinsics.width_px as usize, intrinsics.height_px as usize);
+    let mut img = vec![96u8; 3 * w * h];
+    let mut put = |col: u32, row: u32, rgb: [u8; 3]| {
+        let i = 3 * (row as usize * w + col as usize);
+        img[i..i + 3].copy_from_slice(&rgb);
+    };
+    if let Some(b) = blob {
+        for &(c, r) in &b.pixels {
+            put(c, r, [255, 140, 0]);
+        }
+        let (c0, c1) = (
+            b.cols[0].saturating_sub(4),
+            (b.cols[1] + 4).min(intrinsics.width_px - 1),
+        );
+        for row in [b.rows[0], b.rows[1]] {
+            for col in c0..=c1 {
+                if !b.pixels.contains(&(col, row)) {
+                    put(col, row, [40, 220, 60]);
+                }
+            }
+        }
+    }
+    img
+}

@@ -1,0 +1,198 @@
+//! The head camera's reading of the beacon: geometry, bearing, noise, and the
+//! cases where it must give no reading.
+
+use quadsim::beacon::BeaconConfig;
+use quadsim::camera::CameraIntrinsics;
+use quadsim::vision::{self, NoReading};
+use quadsim::{CameraConfig, ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+use rapier3d::geometry::ColliderBuilder;
+use rapier3d::math::{Pose, Vector};
+use rapier3d::pipeline::PhysicsWorld;
+use rapier3d::prelude::RigidBodyBuilder;
+
+fn standing(config: SimConfig, seconds: f64) -> (QuadrupedSim, Vec<quadsim::Frame>) {
+    let d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
+    let mut sim = QuadrupedSim::new(&d, config).expect("sim");
+    let mut frames = Vec::new();
+    for _ in 0..(seconds / 0.004).round() as usize {
+        sim.step();
+        frames.extend(sim.take_frame());
+    }
+    (sim, frames)
+}
+
+fn noiseless() -> SimConfig {
+    SimConfig {
+        camera: CameraConfig {
+            noise_px: 0.0,
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+#[test]
+fn frames_come_at_20_hz_of_simulated_time() {
+    let (_, frames) = standing(noiseless(), 2.0);
+    assert_eq!(frames.len(), 40);
+    for (k, f) in frames.iter().enumerate() {
+        assert!((f.t_s - 0.05 * (k + 1) as f64).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn reading_is_f_h_over_d_within_quantisation() {
+    let fy = CameraIntrinsics::default().fy();
+    for d in [1.2, 2.0, 3.0] {
+        let config = SimConfig {
+            start_distance_m: d,
+            ..noiseless()
+        };
+        let (sim, frames) = standing(config, 1.0);
+        let obs = frames.last().expect("frames").obs_px.expect("seen");
+        // Distance from the camera to the band's near face.
+        let cam = sim.camera_pose().translation;
+        let range = (0.0 - f64::from(cam.x)) - 0.05;
+        let expected = fy * 0.2 / range;
+        assert!(
+            (obs - expected).abs() <= 1.5,
+            "at {d} m: {obs} px vs {expected:.1} px"
+        );
+    }
+}
+
+#[test]
+fn readings_fall_with_distance() {
+    let mut last = f64::INFINITY;
+    for d in [1.2, 1.6, 2.0, 2.4, 2.8, 3.2, 3.6] {
+        let (_, frames) = standing(
+            SimConfig {
+                start_distance_m: d,
+                ..noiseless()
+            },
+            0.6,
+        );
+        let obs = frames.last().expect("frame").obs_px.expect("seen");
+        assert!(obs < last, "{obs} px at {d} m is not below {last} px");
+        last = obs;
+    }
+}
+
+#[test]
+fn bearing_is_positive_for_a_beacon_on_the_left() {
+    let beacon = BeaconConfig {
+        xy_m: [0.0, 0.3],
+        ..Default::default()
+    };
+    // The robot starts at (beacon x - d, beacon y): shift the beacon, not the robot.
+    let config = SimConfig {
+        beacon,
+        ..noiseless()
+    };
+    let (sim, frames) = standing(config, 0.2);
+    let f = frames.last().expect("frame");
+    // Straight ahead: the robot starts on the beacon's line, so the bearing is small.
+    let b = f.bearing_rad.expect("seen");
+    assert!(b.abs() < 0.02, "bearing {b}");
+    let _ = sim;
+    // Now look at a beacon off to the left of a camera facing +x.
+    let mut world = PhysicsWorld::new();
+    let beacon = BeaconConfig {
+        xy_m: [2.0, 0.3],
+        ..Default::default()
+    };
+    let band = beacon.insert(&mut world);
+    world.step();
+    let camera = Pose::translation(0.0, 0.0, 0.2);
+    let blob = vision::find_band(&world, &camera, &CameraIntrinsics::default(), &beacon, band)
+        .expect("seen");
+    let bearing = CameraIntrinsics::default().bearing_of_column(blob.mean_column());
+    assert!(
+        (bearing - (0.3f64).atan2(2.0)).abs() < 0.02,
+        "bearing {bearing}"
+    );
+}
+
+#[test]
+fn no_reading_out_of_view_behind_cut_or_occluded() {
+    let intr = CameraIntrinsics::default();
+    let beacon = BeaconConfig {
+        xy_m: [2.0, 0.0],
+        ..Default::default()
+    };
+    let mut world = PhysicsWorld::new();
+    let band = beacon.insert(&mut world);
+    let blocker = world
+        .bodies
+        .insert(RigidBodyBuilder::fixed().translation(Vector::new(1.0, 0.0, 0.2)));
+    world.colliders.insert_with_parent(
+        ColliderBuilder::cuboid(0.05, 0.05, 0.02),
+        blocker,
+        &mut world.bodies,
+    );
+    world.step();
+    let look = |x: f64, y: f64, yaw: f64| {
+        let pose = Pose::from_parts(
+            Vector::new(x as f32, y as f32, 0.2),
+            rapier3d::math::Rotation::from_rotation_z(yaw as f32),
+        );
+        vision::find_band(&world, &pose, &intr, &beacon, band)
+    };
+    // Facing away.
+    assert_eq!(
+        look(0.0, 0.5, std::f64::consts::PI).map(|_| ()),
+        Err(NoReading::OutOfView)
+    );
+    // Far off to the side of the view.
+    assert_eq!(look(0.0, 3.0, 0.0).map(|_| ()), Err(NoReading::OutOfView));
+    // So close the band fills the image: cut by the border.
+    assert!(matches!(
+        look(1.85, 0.0, 0.0).map(|_| ()),
+        Err(NoReading::OutOfView | NoReading::CutByBorder)
+    ));
+    // The blocker stands in the way of part of the band.
+    assert_eq!(look(0.0, 0.0, 0.0).map(|_| ()), Err(NoReading::Occluded));
+    // Step aside and the band is seen whole.
+    assert!(look(0.0, 0.6, -0.3).is_ok());
+}
+
+#[test]
+fn standing_noise_is_about_the_configured_spread() {
+    let config = SimConfig {
+        start_distance_m: 2.0,
+        ..Default::default()
+    };
+    let (_, frames) = standing(config, 6.0);
+    let obs: Vec<f64> = frames
+        .iter()
+        .skip(20)
+        .map(|f| f.obs_px.expect("seen"))
+        .collect();
+    let n = obs.len() as f64;
+    let mean = obs.iter().sum::<f64>() / n;
+    let std = (obs.iter().map(|o| (o - mean).powi(2)).sum::<f64>() / n).sqrt();
+    assert!(
+        (0.7..=1.3).contains(&std),
+        "std {std:.2} px over {n} readings"
+    );
+}
+
+#[test]
+fn same_seed_same_readings_other_seed_other_noise() {
+    let run = |seed| {
+        let config = SimConfig {
+            camera: CameraConfig {
+                noise_seed: seed,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        standing(config, 1.0)
+            .1
+            .iter()
+            .map(|f| f.obs_px.map(f64::to_bits).ok())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(run(1), run(1));
+    assert_ne!(run(1), run(2));
+}
