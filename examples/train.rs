@@ -1,160 +1,281 @@
-//! Trains SCASM and judges it by the paper's protocol.
+//! The paper's experiment on the simulated robot: trials of SCASM learning the
+//! robot's action and sensor models at once, judged by the paper's protocol
+//! against the models measured by stopwatch and by standing at marked distances.
 //!
-//! Until the simulated quadruped lands, this runs the synthetic closed loop: a
-//! point robot with a made-up nonlinear action model and an ideal pinhole camera
-//! with Gaussian pixel noise, under the paper's behaviour. It prints the learned
-//! models beside the truth and the errors beside the paper's.
+//! Writes a run directory with summary.json, the measured models, and per trial
+//! its trace and learned models.
 
-use anyhow::{Result, ensure};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
-use scasm::{CalibrationLearner, Polynomial, Scasm, ScasmConfig};
-use testbed::metrics;
-use testbed::synthetic::{self, SyntheticTrialConfig};
+use indicatif::{ProgressBar, ProgressStyle};
+use testbed::experiment::{self, Figures, LearningMode, Scenario};
+use testbed::trial::TrialOutcome;
 
-/// Train SCASM in the synthetic closed loop (no physics).
+/// Run SCASM training trials on the simulated quadruped.
 #[derive(Debug, Parser)]
 struct Args {
-    /// Number of trials (seeds 0..N).
+    /// Number of trials (seeds 0..N); ignored if --seeds is given.
     #[arg(long, default_value_t = 15)]
     trials: u64,
+    /// Seeds as a range A..B (B excluded).
+    #[arg(long)]
+    seeds: Option<String>,
     /// Trial length, s.
-    #[arg(long, default_value_t = 150.0)]
-    duration: f64,
-    /// Reading noise, px (standard deviation).
-    #[arg(long, default_value_t = 1.0)]
-    noise_px: f64,
-    /// Forgetting factor gamma.
-    #[arg(long, default_value_t = ScasmConfig::default().gamma)]
-    gamma: f64,
-    /// Pull beta.
-    #[arg(long, default_value_t = ScasmConfig::default().beta)]
-    beta: f64,
-    /// Ramp-up t_start, s.
-    #[arg(long, default_value_t = ScasmConfig::default().t_start_s)]
-    t_start: f64,
+    #[arg(long)]
+    duration: Option<f64>,
+    /// A setting as key=value (repeatable), e.g. learner.gamma=0.995.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// The learner (only `scasm` so far).
+    #[arg(long, default_value = "scasm")]
+    learner: String,
+    /// What is learned from what.
+    #[arg(long, value_enum, default_value = "simultaneous")]
+    mode: Mode,
+    /// Run directory (default: runs/train-<unix time>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Where measured reference models are cached.
+    #[arg(long, default_value = "runs/.cache")]
+    cache: PathBuf,
 }
 
-fn mean_std(v: &[f64]) -> (f64, f64) {
-    let n = v.len() as f64;
-    let m = v.iter().sum::<f64>() / n;
-    (
-        m,
-        (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / n).sqrt(),
-    )
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+enum Mode {
+    Simultaneous,
+    SensorFromAction,
+    ActionFromSensor,
+}
+
+fn parse_seeds(args: &Args) -> Result<Vec<u64>> {
+    match &args.seeds {
+        None => Ok((0..args.trials).collect()),
+        Some(s) => {
+            let (a, b) = s.split_once("..").context("--seeds must look like A..B")?;
+            let (a, b): (u64, u64) = (a.trim().parse()?, b.trim().parse()?);
+            ensure!(a < b, "--seeds {s} is empty");
+            Ok((a..b).collect())
+        }
+    }
+}
+
+fn write_csv(path: &Path, header: &str, rows: impl Iterator<Item = String>) -> Result<()> {
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
+    );
+    writeln!(f, "{header}")?;
+    for r in rows {
+        writeln!(f, "{r}")?;
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map(|x| x.to_string()).unwrap_or_default()
+}
+
+fn write_trial(dir: &Path, outcome: &TrialOutcome) -> Result<()> {
+    let dir = dir.join(format!("trial-{}", outcome.seed));
+    std::fs::create_dir_all(&dir)?;
+    write_csv(
+        &dir.join("trace.csv"),
+        "t,command,obs,x_true_mm,x_a,x_s",
+        outcome.trace.iter().map(|r| {
+            format!(
+                "{},{},{},{},{},{}",
+                r.t_s,
+                r.command,
+                opt(r.obs_px),
+                r.x_true_mm,
+                opt(r.x_a),
+                opt(r.x_s)
+            )
+        }),
+    )?;
+    write_csv(
+        &dir.join("errors_over_time.csv"),
+        "t,action_rmse_mm_s,sensor_rmse_mm,consistency",
+        outcome.over_time.iter().map(|j| {
+            format!(
+                "{},{},{},{}",
+                j.t_s,
+                opt(j.action_rmse_mm_s),
+                opt(j.sensor_rmse_mm),
+                opt(j.consistency)
+            )
+        }),
+    )?;
+    let models = serde_json::json!({
+        "action": outcome.action_model.map(|p| p.coeffs().to_vec()),
+        "sensor": outcome.sensor_model.map(|p| p.coeffs().to_vec()),
+    });
+    std::fs::write(
+        dir.join("models.json"),
+        serde_json::to_string_pretty(&models)?,
+    )?;
+    Ok(())
 }
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    ensure!(args.trials > 0, "--trials must be at least 1");
-    ensure!(
-        args.duration > 0.0 && args.duration.is_finite(),
-        "--duration must be > 0"
-    );
-    ensure!(
-        args.noise_px >= 0.0 && args.noise_px.is_finite(),
-        "--noise-px must be >= 0"
-    );
-    let params = ScasmConfig {
-        gamma: args.gamma,
-        beta: args.beta,
-        t_start_s: args.t_start,
-        ..Default::default()
+    if args.learner != "scasm" {
+        bail!("unknown learner `{}`; available: scasm", args.learner);
     }
-    .validate()?;
-    let config = SyntheticTrialConfig {
-        duration_s: args.duration,
-        noise_px: args.noise_px,
-        ..Default::default()
+    let seeds = parse_seeds(&args)?;
+    let mut scenario = Scenario::paper()?;
+    for s in &args.set {
+        scenario.set(s)?;
+    }
+    if let Some(d) = args.duration {
+        scenario.set(&format!("trial.duration={d}"))?;
+    }
+    scenario.mode = match args.mode {
+        Mode::Simultaneous => LearningMode::Simultaneous,
+        Mode::SensorFromAction => LearningMode::SensorFromAction,
+        Mode::ActionFromSensor => LearningMode::ActionFromSensor,
     };
+    let out = args.out.clone().unwrap_or_else(|| {
+        let t = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map(|d| d.as_secs())
+            .unwrap_or(0);
+        PathBuf::from(format!("runs/train-{t}"))
+    });
+    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let started = std::time::Instant::now();
+
+    println!("Measuring the robot's true models (stopwatch and stand-and-read protocols)...");
+    let models = experiment::measured_models(&scenario, Some(&args.cache))?;
+    println!(
+        "  {} (cache key {})",
+        if models.from_cache {
+            "read from cache"
+        } else {
+            "measured"
+        },
+        scenario.reference_key()
+    );
+    write_csv(
+        &out.join("measured_action.csv"),
+        "command,velocity_mm_s,std_mm_s",
+        models.action.iter().map(|(c, v, s)| format!("{c},{v},{s}")),
+    )?;
+    write_csv(
+        &out.join("measured_sensor.csv"),
+        "distance_mm,obs_px,std_px",
+        models.sensor.iter().map(|(d, o, s)| format!("{d},{o},{s}")),
+    )?;
 
     println!(
-        "SCASM, synthetic closed loop (point robot, no physics): {} trials of {} s, noise {} px",
-        args.trials, args.duration, args.noise_px
+        "Running {} trials of {} s ({:?}, learner {}) on {} threads...",
+        seeds.len(),
+        scenario.duration_s,
+        scenario.mode,
+        args.learner,
+        rayon::current_num_threads()
     );
-    let started = std::time::Instant::now();
-    let (mut action, mut sensor, mut consistency) = (Vec::new(), Vec::new(), Vec::new());
-    let mut last = None;
-    for seed in 0..args.trials {
-        let mut learner = Scasm::new(params, scasm::Mode::Simultaneous)?;
-        let out = synthetic::run_trial(&mut learner, &config, seed)?;
-        let (Some(a), Some(s), Some(c)) = (out.action_error, out.sensor_error, out.consistency)
-        else {
-            println!("  seed {seed:2}: no models learned");
-            continue;
-        };
-        println!(
-            "  seed {seed:2}: action {:6.1} mm/s   sensor {:6.1} mm   consistency {:.3}",
-            a.rmse, s.rmse, c
-        );
-        action.push(a.rmse);
-        sensor.push(s.rmse);
-        consistency.push(c);
-        last = Some((learner, a, s));
+    let bar = ProgressBar::new(seeds.len() as u64).with_style(
+        ProgressStyle::with_template(
+            "  [{elapsed_precise}] {bar:40} {pos}/{len} trials, eta {eta}",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let write_errors = Mutex::new(Vec::new());
+    let results = experiment::run_trials(&scenario, &models, &seeds, &|o| {
+        if let Err(e) = write_trial(&out, o) {
+            if let Ok(mut v) = write_errors.lock() {
+                v.push(e.to_string());
+            }
+        }
+        bar.inc(1);
+    })?;
+    bar.finish();
+    if let Some(e) = write_errors.lock().ok().and_then(|v| v.first().cloned()) {
+        bail!("writing a trial's files: {e}");
     }
-    let wall = started.elapsed().as_secs_f64();
-    ensure!(!action.is_empty(), "no trial learned both models");
 
-    let measured_a = synthetic::measured_action();
-    let measured_s = synthetic::measured_sensor();
-    let obs_to_d: Vec<(f64, f64)> = measured_s.iter().map(|&(d, o)| (o, d)).collect();
-    let a0 = metrics::action_error(&Polynomial::identity(), &measured_a);
-    let best_a = metrics::best_polynomial_rmse(&measured_a, 4).unwrap_or(f64::NAN);
-    let best_s = metrics::best_polynomial_rmse(&obs_to_d, 3).unwrap_or(f64::NAN);
-    let (am, asd) = mean_std(&action);
-    let (sm, ssd) = mean_std(&sensor);
-    let (cm, csd) = mean_std(&consistency);
+    let best = experiment::best_possible(&models.reference(), &scenario.learner);
+    let figures: Vec<Figures> = results.iter().map(|(o, _)| Figures::of(o, best)).collect();
+    let (mean, std, paper) = (
+        Figures::mean(&figures),
+        Figures::std(&figures),
+        Figures::paper(),
+    );
+    let fell: Vec<u64> = results
+        .iter()
+        .filter(|(o, _)| o.fell)
+        .map(|(o, _)| o.seed)
+        .collect();
+    let trials: Vec<serde_json::Value> = results
+        .iter()
+        .zip(&figures)
+        .map(|((o, _), f)| {
+            let mut v = serde_json::to_value(f).unwrap_or_default();
+            v["seed"] = o.seed.into();
+            v["fell"] = o.fell.into();
+            v
+        })
+        .collect();
+    let summary = serde_json::json!({ "trials": trials, "mean": mean, "std": std, "paper": paper });
+    std::fs::write(
+        out.join("summary.json"),
+        serde_json::to_string_pretty(&summary)?,
+    )?;
 
+    let velocity_range = models.action.iter().map(|a| a.1).fold(f64::MIN, f64::max)
+        - models.action.iter().map(|a| a.1).fold(f64::MAX, f64::min);
+    let distance_range = 2400.0;
     println!();
     println!(
-        "{:<13} {:>22} {:>22} {:>16}",
-        "figure", "ours (mean +- std)", "paper (Aibo ERS-7)", "best poly / A0"
+        "{:<14} {:>24} {:>16} {:>12} {:>10}",
+        "figure", "ours (mean +- std)", "paper", "best poly", "A0"
     );
     println!(
-        "{:<13} {:>15.1} +- {:>4.1} {:>22} {:>16}",
+        "{:<14} {:>14.1} +- {:>5.1} {:>16} {:>12.1} {:>10.1}",
         "action mm/s",
-        am,
-        asd,
+        mean.action_rmse_mm_s,
+        std.action_rmse_mm_s,
         "29.6",
-        format!("{best_a:.1} / {:.1}", a0.rmse)
+        mean.action_best_rmse_mm_s,
+        mean.action_a0_rmse_mm_s
     );
     println!(
-        "{:<13} {:>15.1} +- {:>4.1} {:>22} {:>16}",
+        "{:<14} {:>14.1} +- {:>5.1} {:>16} {:>12.1}",
         "sensor mm",
-        sm,
-        ssd,
+        mean.sensor_rmse_mm,
+        std.sensor_rmse_mm,
         "70.4 +- 13.9",
-        format!("{best_s:.1}")
+        mean.sensor_best_rmse_mm
     );
     println!(
-        "{:<13} {:>15.3} +- {:>4.3} {:>22}",
-        "consistency", cm, csd, "0.08 +- 0.06"
+        "{:<14} {:>14.3} +- {:>5.3} {:>16}",
+        "consistency", mean.consistency, std.consistency, "0.08 +- 0.06"
     );
-
-    if let Some((learner, a, s)) = last {
-        println!(
-            "\nLast trial's models, mapped into true units by the best scale (A) and affine map (S):"
-        );
-        println!("  {:>8} {:>12} {:>12}", "command", "true mm/s", "learned");
-        let model = learner.action_model().unwrap_or_else(Polynomial::identity);
-        for &(c, v) in measured_a.iter().step_by(5) {
-            println!("  {:>8.0} {:>12.1} {:>12.1}", c, v, a.scale * model.eval(c));
-        }
-        println!("  {:>8} {:>12} {:>12}", "obs px", "true mm", "learned");
-        let model = learner.sensor_model().unwrap_or_else(Polynomial::identity);
-        for &(d, o) in measured_s.iter().step_by(2) {
-            println!(
-                "  {:>8.1} {:>12.0} {:>12.0}",
-                o,
-                d,
-                s.offset + s.scale * model.eval(o)
-            );
-        }
+    println!(
+        "\naction error {:.1} % of the {:.0} mm/s velocity range (paper 4.9 %); sensor error {:.1} % of the {:.0} mm distance range (paper 2.9 %)",
+        100.0 * mean.action_rmse_mm_s / velocity_range,
+        velocity_range,
+        100.0 * mean.sensor_rmse_mm / distance_range,
+        distance_range
+    );
+    println!(
+        "learned / best possible: action {:.2}x, sensor {:.2}x",
+        mean.action_rmse_mm_s / mean.action_best_rmse_mm_s,
+        mean.sensor_rmse_mm / mean.sensor_best_rmse_mm
+    );
+    if !fell.is_empty() {
+        println!("the robot tipped over in trials {fell:?}");
     }
     println!(
-        "\n{} trials in {:.2} s wall ({:.0}x real time)",
-        action.len(),
-        wall,
-        action.len() as f64 * args.duration / wall
+        "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",
+        results.len(),
+        mean.realtime_factor,
+        started.elapsed().as_secs_f64(),
+        out.display()
     );
     Ok(())
 }

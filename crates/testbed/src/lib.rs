@@ -7,7 +7,9 @@
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod experiment;
 pub mod measure;
 pub mod metrics;
 pub mod seeds;
 pub mod synthetic;
+pub mod trial;
