@@ -96,9 +96,15 @@ impl Scenario {
         })
     }
 
-    /// Applies `key=value`; ranges are checked here or when the world and the
-    /// learner are built.
+    /// Applies `key=value`, or changes nothing and says which key is wrong.
     pub fn set(&mut self, assignment: &str) -> Result<(), SettingError> {
+        let mut changed = self.clone();
+        changed.apply(assignment)?;
+        *self = changed;
+        Ok(())
+    }
+
+    fn apply(&mut self, assignment: &str) -> Result<(), SettingError> {
         let (key, value) = assignment
             .split_once('=')
             .ok_or_else(|| SettingError::Malformed(assignment.into()))?;

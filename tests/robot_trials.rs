@@ -1,0 +1,227 @@
+//! Training trials on the simulated robot: a trial learns, is bit-identical per
+//! seed, feeds the learner nothing but command and reading events, and a trial
+//! resumed from a learner checkpoint ends exactly as one never stopped.
+
+use std::sync::OnceLock;
+
+use scasm::{CalibrationLearner, Event, EventError, Polynomial, Scasm};
+use testbed::experiment::{self, MeasuredModels, Scenario};
+use testbed::metrics;
+use testbed::trial::{self, TrialConfig, TrialRunner};
+
+/// The measured reference, measured once per test run (and cached between runs).
+fn setup() -> &'static (Scenario, MeasuredModels) {
+    static SETUP: OnceLock<(Scenario, MeasuredModels)> = OnceLock::new();
+    SETUP.get_or_init(|| {
+        let scenario = Scenario::paper().expect("scenario");
+        let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
+        let models = experiment::measured_models(&scenario, Some(&cache)).expect("measured");
+        (scenario, models)
+    })
+}
+
+fn config(seed: u64, duration_s: f64) -> TrialConfig {
+    TrialConfig {
+        duration_s,
+        seed,
+        behaviour: experiment::behaviour_for(&setup().1),
+        judge_every_s: 5.0,
+    }
+}
+
+fn bits(p: Option<Polynomial>) -> Vec<u64> {
+    p.map(|p| p.coeffs().iter().map(|c| c.to_bits()).collect())
+        .unwrap_or_default()
+}
+
+#[test]
+fn a_trial_learns_both_models() {
+    let (scenario, models) = setup();
+    let reference = models.reference();
+    let mut learner = Scasm::default();
+    let out = trial::run_trial(
+        &scenario.description,
+        scenario.sim,
+        config(0, 150.0),
+        &mut learner,
+        &reference,
+    )
+    .expect("trial");
+    assert!(!out.fell, "the robot tipped over");
+    let a0 = metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
+    let action = out.last.action_rmse_mm_s.expect("action model learned");
+    assert!(
+        action < 0.75 * a0,
+        "action error {action:.1} mm/s vs A0's {a0:.1}"
+    );
+    // The sensor model has no A0; its baseline is the raw reading under its best
+    // affine map, the best any model linear in pixels could do.
+    let raw = metrics::sensor_error(&Polynomial::identity(), &reference.sensor).rmse;
+    let sensor = out.last.sensor_rmse_mm.expect("sensor model learned");
+    assert!(
+        sensor < 0.75 * raw,
+        "sensor error {sensor:.1} mm vs the raw reading's {raw:.1}"
+    );
+}
+
+#[test]
+fn a_trial_is_bit_identical_per_seed() {
+    let (scenario, models) = setup();
+    let run = |seed| {
+        let mut learner = Scasm::default();
+        let out = trial::run_trial(
+            &scenario.description,
+            scenario.sim,
+            config(seed, 25.0),
+            &mut learner,
+            &models.reference(),
+        )
+        .expect("trial");
+        let trace: Vec<u64> = out
+            .trace
+            .iter()
+            .flat_map(|r| {
+                [
+                    r.x_true_mm.to_bits(),
+                    r.obs_px.unwrap_or(-1.0).to_bits(),
+                    r.x_a.unwrap_or(0.0).to_bits(),
+                ]
+            })
+            .collect();
+        (trace, bits(out.action_model), bits(out.sensor_model))
+    };
+    let a = run(7);
+    assert_eq!(a, run(7));
+    assert_ne!(a.0, run(8).0);
+}
+
+/// Delegates to SCASM and checks that what it is fed is a well-formed stream of
+/// command and reading events and nothing else.
+struct Witness {
+    inner: Scasm,
+    clock_s: f64,
+    commands: usize,
+    readings: usize,
+}
+
+impl CalibrationLearner for Witness {
+    fn name(&self) -> &'static str {
+        "witness"
+    }
+    fn handle(&mut self, event: Event) -> Result<(), EventError> {
+        match event {
+            Event::Command { t_s, dt_s, command } => {
+                assert!(
+                    (t_s - self.clock_s).abs() < 1e-9,
+                    "commands must be back to back"
+                );
+                assert!((dt_s - 0.05).abs() < 1e-12, "one command per 20 Hz frame");
+                assert!(
+                    command.abs() <= 300.0 * 1.0001,
+                    "command {command} out of the behaviour's range"
+                );
+                self.clock_s = t_s + dt_s;
+                self.commands += 1;
+            }
+            Event::Reading { t_s, obs_px } => {
+                assert!(
+                    (t_s - self.clock_s).abs() < 1e-9,
+                    "readings come at the end of a frame"
+                );
+                assert!(obs_px.is_finite() && obs_px > 0.0);
+                self.readings += 1;
+            }
+        }
+        self.inner.handle(event)
+    }
+    fn action_model(&self) -> Option<Polynomial> {
+        self.inner.action_model()
+    }
+    fn sensor_model(&self) -> Option<Polynomial> {
+        self.inner.sensor_model()
+    }
+    fn x_a(&self) -> Option<f64> {
+        self.inner.x_a()
+    }
+    fn x_s(&self) -> Option<f64> {
+        self.inner.x_s()
+    }
+}
+
+#[test]
+fn the_learner_gets_only_commands_and_readings() {
+    let (scenario, models) = setup();
+    let mut w = Witness {
+        inner: Scasm::default(),
+        clock_s: 0.0,
+        commands: 0,
+        readings: 0,
+    };
+    let out = trial::run_trial(
+        &scenario.description,
+        scenario.sim,
+        config(3, 20.0),
+        &mut w,
+        &models.reference(),
+    )
+    .expect("trial");
+    assert_eq!(w.commands, 400);
+    assert_eq!(
+        w.readings,
+        out.trace.iter().filter(|r| r.obs_px.is_some()).count()
+    );
+    assert!(
+        w.readings > 380,
+        "the beacon was seen in only {} of 400 frames",
+        w.readings
+    );
+}
+
+#[test]
+fn a_trial_resumed_from_a_learner_checkpoint_ends_bit_identical() {
+    let (scenario, _) = setup();
+    let cfg = config(11, 45.0);
+    let mut straight_runner =
+        TrialRunner::new(&scenario.description, scenario.sim, cfg).expect("runner");
+    let mut resumed_runner =
+        TrialRunner::new(&scenario.description, scenario.sim, cfg).expect("runner");
+    let mut straight = Scasm::default();
+    let mut first_half = Scasm::default();
+    let frames = straight_runner.total_frames();
+    for _ in 0..frames / 2 {
+        straight_runner.step_frame(&mut straight).expect("frame");
+        resumed_runner.step_frame(&mut first_half).expect("frame");
+    }
+    // Stop: save the learner and go on with one restored from the checkpoint alone.
+    let checkpoint = serde_json::to_string(&first_half).expect("save");
+    let mut resumed: Scasm = serde_json::from_str(&checkpoint).expect("restore");
+    while !straight_runner.finished() {
+        let a = straight_runner.step_frame(&mut straight).expect("frame");
+        let b = resumed_runner.step_frame(&mut resumed).expect("frame");
+        assert_eq!(a.x_a.map(f64::to_bits), b.x_a.map(f64::to_bits));
+    }
+    assert_eq!(bits(straight.action_model()), bits(resumed.action_model()));
+    assert_eq!(bits(straight.sensor_model()), bits(resumed.sensor_model()));
+    assert_eq!(
+        serde_json::to_string(&straight).expect("save"),
+        serde_json::to_string(&resumed).expect("save")
+    );
+}
+
+#[test]
+fn unknown_or_out_of_range_settings_are_named() {
+    let mut s = Scenario::paper().expect("scenario");
+    let e = s.set("learner.gama=0.9").expect_err("unknown key");
+    assert!(e.to_string().contains("learner.gama"), "{e}");
+    let e = s.set("learner.gamma=1.5").expect_err("out of range");
+    assert!(e.to_string().contains("learner.gamma"), "{e}");
+    let e = s.set("world.friction=abc").expect_err("not a number");
+    assert!(e.to_string().contains("world.friction"), "{e}");
+    let e = s.set("camera.noise_px=NaN").expect_err("not finite");
+    assert!(e.to_string().contains("camera.noise_px"), "{e}");
+    assert!(s.set("noequals").is_err());
+    // Nothing of the refused settings stuck.
+    assert_eq!(s.learner.gamma, 0.999);
+    s.set("learner.beta=0.05").expect("valid");
+    assert_eq!(s.learner.beta, 0.05);
+}
