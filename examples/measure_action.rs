@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Parser;
-use quadsim::{RobotDescription, SimConfig};
+use quadsim::RobotDescription;
 use scasm::Polynomial;
 use testbed::measure::{self, StopwatchConfig};
 use testbed::metrics;
@@ -22,6 +22,9 @@ struct Args {
     /// Robot description (default: the shipped assets/ers7.urdf).
     #[arg(long)]
     urdf: Option<PathBuf>,
+    /// A setting as key=value (repeatable), as for `train`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
 }
 
 fn main() -> Result<()> {
@@ -30,7 +33,11 @@ fn main() -> Result<()> {
         Some(path) => RobotDescription::from_file(path)?,
         None => RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
     };
-    let sim_config = SimConfig::default();
+    let mut scenario = testbed::experiment::Scenario::paper()?;
+    for s in &args.set {
+        scenario.set(s)?;
+    }
+    let sim_config = scenario.sim;
     let started = std::time::Instant::now();
     let commands = measure::paper_commands();
     let stopwatch = StopwatchConfig::default();

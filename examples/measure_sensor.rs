@@ -27,6 +27,9 @@ struct Args {
     /// Robot description (default: the shipped assets/ers7.urdf).
     #[arg(long)]
     urdf: Option<PathBuf>,
+    /// A setting as key=value (repeatable), as for `train`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
 }
 
 fn save_frame(
@@ -83,7 +86,11 @@ fn main() -> Result<()> {
         Some(path) => RobotDescription::from_file(path)?,
         None => RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
     };
-    let config = SimConfig::default();
+    let mut scenario = testbed::experiment::Scenario::paper()?;
+    for s in &args.set {
+        scenario.set(s)?;
+    }
+    let config = scenario.sim;
     let distances = measure::paper_distances_m();
     let started = std::time::Instant::now();
     let table = measure::measure_sensor(&description, config, &distances, args.readings)?;
