@@ -25,6 +25,9 @@ struct Args {
     /// A setting as key=value (repeatable), as for `train`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+    /// A scenario file (TOML, e.g. assets/scenarios/paper.toml); --set overrides it.
+    #[arg(long)]
+    config: Option<PathBuf>,
 }
 
 fn main() -> Result<()> {
@@ -33,10 +36,7 @@ fn main() -> Result<()> {
         Some(path) => RobotDescription::from_file(path)?,
         None => RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
     };
-    let mut scenario = testbed::experiment::Scenario::paper()?;
-    for s in &args.set {
-        scenario.set(s)?;
-    }
+    let scenario = testbed::experiment::Scenario::from_settings(args.config.as_deref(), &args.set)?;
     let sim_config = scenario.sim;
     let started = std::time::Instant::now();
     let commands = measure::paper_commands();

@@ -30,6 +30,9 @@ struct Args {
     /// A setting as key=value (repeatable), e.g. learner.gamma=0.995.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+    /// A scenario file (TOML, e.g. assets/scenarios/paper.toml); --set overrides it.
+    #[arg(long)]
+    config: Option<PathBuf>,
     /// The learner (only `scasm` so far).
     #[arg(long, default_value = "scasm")]
     learner: String,
@@ -126,10 +129,7 @@ fn main() -> Result<()> {
         bail!("unknown learner `{}`; available: scasm", args.learner);
     }
     let seeds = parse_seeds(&args)?;
-    let mut scenario = Scenario::paper()?;
-    for s in &args.set {
-        scenario.set(s)?;
-    }
+    let mut scenario = Scenario::from_settings(args.config.as_deref(), &args.set)?;
     if let Some(d) = args.duration {
         scenario.set(&format!("trial.duration={d}"))?;
     }

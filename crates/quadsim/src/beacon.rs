@@ -12,10 +12,10 @@ pub struct BeaconConfig {
     pub xy_m: [f64; 2],
     /// Radius of the pole and band, m.
     pub radius_m: f64,
-    /// Height of the band's lower edge above the floor, m.
-    pub band_bottom_m: f64,
-    /// Height of the band's upper edge above the floor, m.
-    pub band_top_m: f64,
+    /// Height of the band's middle above the floor, m.
+    pub band_centre_m: f64,
+    /// The band's height, m.
+    pub band_height_m: f64,
 }
 
 impl Default for BeaconConfig {
@@ -25,16 +25,21 @@ impl Default for BeaconConfig {
         Self {
             xy_m: [0.0, 0.0],
             radius_m: 0.05,
-            band_bottom_m: 0.10,
-            band_top_m: 0.30,
+            band_centre_m: 0.20,
+            band_height_m: 0.20,
         }
     }
 }
 
 impl BeaconConfig {
-    /// The band's height, m.
-    pub fn band_height_m(&self) -> f64 {
-        self.band_top_m - self.band_bottom_m
+    /// Height of the band's lower edge above the floor, m.
+    pub fn band_bottom_m(&self) -> f64 {
+        self.band_centre_m - 0.5 * self.band_height_m
+    }
+
+    /// Height of the band's upper edge above the floor, m.
+    pub fn band_top_m(&self) -> f64 {
+        self.band_centre_m + 0.5 * self.band_height_m
     }
 
     /// Where the ray `origin + t dir` (world frame, `dir` of unit length) first
@@ -44,7 +49,7 @@ impl BeaconConfig {
         let (px, py) = (origin[0] - self.xy_m[0], origin[1] - self.xy_m[1]);
         let r2 = self.radius_m * self.radius_m;
         let z_at = |t: f64| origin[2] + t * dir[2];
-        let within = |z: f64| (self.band_bottom_m..=self.band_top_m).contains(&z);
+        let within = |z: f64| (self.band_bottom_m()..=self.band_top_m()).contains(&z);
         let mut best: Option<f64> = None;
         let mut keep = |t: f64| {
             if t > 0.0 && best.is_none_or(|b| t < b) {
@@ -68,7 +73,7 @@ impl BeaconConfig {
         }
         // End discs.
         if dir[2] != 0.0 {
-            for z in [self.band_bottom_m, self.band_top_m] {
+            for z in [self.band_bottom_m(), self.band_top_m()] {
                 let t = (z - origin[2]) / dir[2];
                 let (x, y) = (px + t * dir[0], py + t * dir[1]);
                 if x * x + y * y <= r2 {
@@ -98,10 +103,10 @@ impl BeaconConfig {
                 &mut world.bodies,
             )
         };
-        if self.band_bottom_m > 0.0 {
-            cylinder(0.0, self.band_bottom_m);
+        if self.band_bottom_m() > 0.0 {
+            cylinder(0.0, self.band_bottom_m());
         }
-        cylinder(self.band_bottom_m, self.band_top_m)
+        cylinder(self.band_bottom_m(), self.band_top_m())
     }
 }
 

@@ -104,7 +104,7 @@ pub fn find_band(
     let (mut inside, mut total) = (0, 0);
     for k in 0..24 {
         let a = f64::from(k) * core::f64::consts::TAU / 24.0;
-        for z in [beacon.band_bottom_m, beacon.band_top_m] {
+        for z in [beacon.band_bottom_m(), beacon.band_top_m()] {
             let w = Vector::new(
                 (beacon.xy_m[0] + beacon.radius_m * a.cos()) as Real,
                 (beacon.xy_m[1] + beacon.radius_m * a.sin()) as Real,

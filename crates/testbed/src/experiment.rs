@@ -38,6 +38,14 @@ pub enum SettingError {
         /// What is wrong.
         reason: String,
     },
+    /// A scenario file is not valid TOML or not of the scenario's shape.
+    #[error("scenario file {file}: {reason}")]
+    File {
+        /// The file.
+        file: String,
+        /// What is wrong.
+        reason: String,
+    },
 }
 
 /// What is learned from what (the paper's sections IV, V and VI).
@@ -104,6 +112,61 @@ impl Scenario {
         Ok(())
     }
 
+    /// The paper's scenario, then a scenario file's settings (if any), then
+    /// `key=value` settings in order: what a command line asks for.
+    pub fn from_settings(file: Option<&Path>, settings: &[String]) -> Result<Self, SettingError> {
+        let mut scenario = Self::paper().map_err(|e| SettingError::File {
+            file: "assets/ers7.urdf".into(),
+            reason: e.to_string(),
+        })?;
+        if let Some(path) = file {
+            let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
+                file: path.display().to_string(),
+                reason: e.to_string(),
+            })?;
+            scenario.apply_toml(&path.display().to_string(), &text)?;
+        }
+        for s in settings {
+            scenario.set(s)?;
+        }
+        Ok(scenario)
+    }
+
+    /// Applies a scenario file's settings (TOML: `[section]` tables of
+    /// `key = value`, the same keys as [`Scenario::set`]), all or nothing.
+    pub fn apply_toml(&mut self, file: &str, text: &str) -> Result<(), SettingError> {
+        let file_error = |reason: String| SettingError::File {
+            file: file.into(),
+            reason,
+        };
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| file_error(e.to_string()))?;
+        let mut changed = self.clone();
+        for (section, entries) in &table {
+            let toml::Value::Table(entries) = entries else {
+                return Err(file_error(format!(
+                    "`{section}` must be a [section] of settings"
+                )));
+            };
+            for (key, value) in entries {
+                let value = match value {
+                    toml::Value::Integer(i) => i.to_string(),
+                    toml::Value::Float(f) => f.to_string(),
+                    other => {
+                        return Err(file_error(format!(
+                            "`{section}.{key}` must be a number, is {}",
+                            other.type_str()
+                        )));
+                    }
+                };
+                changed.apply(&format!("{section}.{key}={value}"))?;
+            }
+        }
+        *self = changed;
+        Ok(())
+    }
+
     fn apply(&mut self, assignment: &str) -> Result<(), SettingError> {
         let (key, value) = assignment
             .split_once('=')
@@ -132,16 +195,7 @@ impl Scenario {
             "learner.action_degree" => self.learner.action_degree = count()?,
             "camera.noise_px" => self.sim.camera.noise_px = number()?,
             "world.friction" => self.sim.friction = number()?,
-            "beacon.height_m" => {
-                let h = number()?;
-                if h <= 0.0 {
-                    return Err(bad(format!("{h} must be > 0")));
-                }
-                let b = &mut self.sim.beacon;
-                let centre = 0.5 * (b.band_bottom_m + b.band_top_m);
-                b.band_bottom_m = (centre - 0.5 * h).max(0.0);
-                b.band_top_m = b.band_bottom_m + h;
-            }
+            "beacon.height_m" => self.sim.beacon.band_height_m = number()?,
             "trial.duration" => {
                 let d = number()?;
                 if d <= 0.0 {

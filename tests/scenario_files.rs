@@ -1,0 +1,69 @@
+//! Scenario files: the shipped ones load, a typo or an out-of-range value is an
+//! error that names it, a malformed file says where, and a refused file changes
+//! nothing.
+
+use testbed::experiment::Scenario;
+
+const PAPER: &str = include_str!("../assets/scenarios/paper.toml");
+
+#[test]
+fn the_paper_scenario_file_is_the_default() {
+    let mut s = Scenario::paper().expect("scenario");
+    let defaults = (s.learner, s.sim, s.duration_s);
+    s.apply_toml("paper.toml", PAPER).expect("valid");
+    assert_eq!(s.learner, defaults.0);
+    assert_eq!(s.sim, defaults.1);
+    assert_eq!(s.duration_s, defaults.2);
+}
+
+#[test]
+fn every_shipped_scenario_loads() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenarios");
+    let mut n = 0;
+    for entry in std::fs::read_dir(dir).expect("scenarios") {
+        let path = entry.expect("entry").path();
+        Scenario::from_settings(Some(&path), &[])
+            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        n += 1;
+    }
+    assert!(n >= 2);
+}
+
+fn refused(text: &str, needle: &str) {
+    let mut s = Scenario::paper().expect("scenario");
+    let before = (s.learner, s.sim, s.duration_s);
+    let e = s.apply_toml("bad.toml", text).expect_err("must be refused");
+    assert!(
+        e.to_string().contains(needle),
+        "`{e}` should mention `{needle}`"
+    );
+    assert_eq!(
+        (s.learner, s.sim, s.duration_s),
+        before,
+        "a refused file changed the scenario"
+    );
+}
+
+#[test]
+fn unknown_keys_and_sections_are_named() {
+    refused("[learner]\ngama = 0.9\n", "learner.gama");
+    refused("[lerner]\ngamma = 0.9\n", "lerner.gamma");
+}
+
+#[test]
+fn out_of_range_values_are_named_and_nothing_is_applied() {
+    // The first setting is valid, the second is not: neither may stick.
+    refused("[learner]\nbeta = 0.05\ngamma = 1.5\n", "learner.gamma");
+    refused("[world]\nfriction = -1.0\n", "world.friction");
+    refused("[learner]\nsensor_degree = 0\n", "learner.sensor_degree");
+}
+
+#[test]
+fn malformed_files_say_where() {
+    refused("[learner\ngamma = 0.9\n", "bad.toml");
+    refused("gamma = 0.9\n", "`gamma` must be a [section]");
+    refused(
+        "[learner]\ngamma = \"high\"\n",
+        "learner.gamma` must be a number",
+    );
+}
