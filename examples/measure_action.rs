@@ -3,15 +3,14 @@
 //! five times. Prints the curve, the identity model's scaled error and the best
 //! polynomials' errors, and writes `measured_action.csv`.
 
-use std::io::Write;
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Parser;
-use quadsim::RobotDescription;
 use scasm::Polynomial;
+use testbed::experiment::Scenario;
 use testbed::measure::{self, StopwatchConfig};
-use testbed::metrics;
+use testbed::{metrics, output};
 
 /// Measure the true command-to-velocity curve of the simulated robot.
 #[derive(Debug, Parser)]
@@ -32,16 +31,13 @@ struct Args {
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    let description = match &args.urdf {
-        Some(path) => RobotDescription::from_file(path)?,
-        None => RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
-    };
-    let scenario = testbed::experiment::Scenario::from_settings(args.config.as_deref(), &args.set)?;
-    let sim_config = scenario.sim;
+    let scenario =
+        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
     let commands = measure::paper_commands();
     let stopwatch = StopwatchConfig::default();
-    let measured = measure::measure_action(&description, sim_config, &stopwatch, &commands)?;
+    let measured = measure::measure_action(description, sim_config, &stopwatch, &commands)?;
     let wall = started.elapsed().as_secs_f64();
 
     println!(
@@ -79,13 +75,12 @@ fn main() -> Result<()> {
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
+    let rows: Vec<_> = measured
+        .iter()
+        .map(|m| (m.command, m.velocity_mm_s, m.std_mm_s))
+        .collect();
+    output::write_measured_action(&args.out, &rows)?;
     let path = args.out.join("measured_action.csv");
-    let mut f =
-        std::fs::File::create(&path).with_context(|| format!("creating {}", path.display()))?;
-    writeln!(f, "command,velocity_mm_s,std_mm_s")?;
-    for m in &measured {
-        writeln!(f, "{},{},{}", m.command, m.velocity_mm_s, m.std_mm_s)?;
-    }
     println!("wrote {}", path.display());
     Ok(())
 }

@@ -3,14 +3,14 @@
 //! each. Prints the table and writes `measured_sensor.csv`; `--save-frame` also
 //! writes a PNG of what the camera sees at each distance.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, ensure};
 use clap::Parser;
 use quadsim::vision::{self, find_band};
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig};
-use testbed::measure;
+use testbed::experiment::Scenario;
+use testbed::{measure, output};
 
 /// Measure the beacon-height-to-distance curve of the simulated camera.
 #[derive(Debug, Parser)]
@@ -85,15 +85,12 @@ fn save_frame(
 fn main() -> Result<()> {
     let args = Args::parse();
     ensure!(args.readings > 0, "--readings must be at least 1");
-    let description = match &args.urdf {
-        Some(path) => RobotDescription::from_file(path)?,
-        None => RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
-    };
-    let scenario = testbed::experiment::Scenario::from_settings(args.config.as_deref(), &args.set)?;
-    let config = scenario.sim;
+    let scenario =
+        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let (description, config) = (&scenario.description, scenario.sim);
     let distances = measure::paper_distances_m();
     let started = std::time::Instant::now();
-    let table = measure::measure_sensor(&description, config, &distances, args.readings)?;
+    let table = measure::measure_sensor(description, config, &distances, args.readings)?;
     println!(
         "{:>12} {:>10} {:>8} {:>7}",
         "distance mm", "obs px", "std px", "missed"
@@ -108,18 +105,17 @@ fn main() -> Result<()> {
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
+    let rows: Vec<_> = table
+        .iter()
+        .map(|r| (r.distance_mm, r.obs_px, r.std_px))
+        .collect();
+    output::write_measured_sensor(&args.out, &rows)?;
     let path = args.out.join("measured_sensor.csv");
-    let mut f =
-        std::fs::File::create(&path).with_context(|| format!("creating {}", path.display()))?;
-    writeln!(f, "distance_mm,obs_px,std_px")?;
-    for r in &table {
-        writeln!(f, "{},{},{}", r.distance_mm, r.obs_px, r.std_px)?;
-    }
     println!("wrote {}", path.display());
     if args.save_frame {
         for &d in &distances {
             let p = args.out.join(format!("frame-{:04.0}mm.png", 1000.0 * d));
-            save_frame(&description, config, d, &p)?;
+            save_frame(description, config, d, &p)?;
             println!("wrote {}", p.display());
         }
     }

@@ -5,7 +5,6 @@
 //! Writes a run directory with summary.json, the measured models, and per trial
 //! its trace and learned models.
 
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -13,6 +12,7 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use testbed::experiment::{self, Figures, LearningMode, Scenario};
+use testbed::output;
 use testbed::trial::TrialOutcome;
 
 /// Run SCASM training trials on the simulated quadruped.
@@ -42,6 +42,9 @@ struct Args {
     /// Run directory (default: runs/train-<unix time>).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Robot description (default: the shipped assets/ers7.urdf).
+    #[arg(long)]
+    urdf: Option<PathBuf>,
     /// Where measured reference models are cached.
     #[arg(long, default_value = "runs/.cache")]
     cache: PathBuf,
@@ -66,17 +69,6 @@ fn parse_seeds(args: &Args) -> Result<Vec<u64>> {
     }
 }
 
-fn write_csv(path: &Path, header: &str, rows: impl Iterator<Item = String>) -> Result<()> {
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?,
-    );
-    writeln!(f, "{header}")?;
-    for r in rows {
-        writeln!(f, "{r}")?;
-    }
-    Ok(())
-}
-
 fn opt(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
@@ -84,7 +76,7 @@ fn opt(v: Option<f64>) -> String {
 fn write_trial(dir: &Path, outcome: &TrialOutcome) -> Result<()> {
     let dir = dir.join(format!("trial-{}", outcome.seed));
     std::fs::create_dir_all(&dir)?;
-    write_csv(
+    output::write_csv(
         &dir.join("trace.csv"),
         "t,command,obs,x_true_mm,x_a,x_s",
         outcome.trace.iter().map(|r| {
@@ -99,7 +91,7 @@ fn write_trial(dir: &Path, outcome: &TrialOutcome) -> Result<()> {
             )
         }),
     )?;
-    write_csv(
+    output::write_csv(
         &dir.join("errors_over_time.csv"),
         "t,action_rmse_mm_s,sensor_rmse_mm,consistency",
         outcome.over_time.iter().map(|j| {
@@ -129,7 +121,8 @@ fn main() -> Result<()> {
         bail!("unknown learner `{}`; available: scasm", args.learner);
     }
     let seeds = parse_seeds(&args)?;
-    let mut scenario = Scenario::from_settings(args.config.as_deref(), &args.set)?;
+    let mut scenario =
+        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
     if let Some(d) = args.duration {
         scenario.set(&format!("trial.duration={d}"))?;
     }
@@ -159,16 +152,8 @@ fn main() -> Result<()> {
         },
         scenario.reference_key()
     );
-    write_csv(
-        &out.join("measured_action.csv"),
-        "command,velocity_mm_s,std_mm_s",
-        models.action.iter().map(|(c, v, s)| format!("{c},{v},{s}")),
-    )?;
-    write_csv(
-        &out.join("measured_sensor.csv"),
-        "distance_mm,obs_px,std_px",
-        models.sensor.iter().map(|(d, o, s)| format!("{d},{o},{s}")),
-    )?;
+    output::write_measured_action(&out, &models.action)?;
+    output::write_measured_sensor(&out, &models.sensor)?;
 
     println!(
         "Running {} trials of {} s ({:?}, learner {}) on {} threads...",

@@ -22,7 +22,7 @@ fn every_shipped_scenario_loads() {
     let mut n = 0;
     for entry in std::fs::read_dir(dir).expect("scenarios") {
         let path = entry.expect("entry").path();
-        Scenario::from_settings(Some(&path), &[])
+        Scenario::from_settings(None, Some(&path), &[])
             .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         n += 1;
     }

@@ -38,8 +38,8 @@ pub enum SettingError {
         /// What is wrong.
         reason: String,
     },
-    /// A scenario file is not valid TOML or not of the scenario's shape.
-    #[error("scenario file {file}: {reason}")]
+    /// A scenario or robot file cannot be read or used.
+    #[error("{file}: {reason}")]
     File {
         /// The file.
         file: String,
@@ -112,13 +112,25 @@ impl Scenario {
         Ok(())
     }
 
-    /// The paper's scenario, then a scenario file's settings (if any), then
-    /// `key=value` settings in order: what a command line asks for.
-    pub fn from_settings(file: Option<&Path>, settings: &[String]) -> Result<Self, SettingError> {
-        let mut scenario = Self::paper().map_err(|e| SettingError::File {
-            file: "assets/ers7.urdf".into(),
-            reason: e.to_string(),
-        })?;
+    /// The paper's scenario with the robot of `urdf` (default: the shipped one),
+    /// then a scenario file's settings (if any), then `key=value` settings in
+    /// order: what a command line asks for.
+    pub fn from_settings(
+        urdf: Option<&Path>,
+        file: Option<&Path>,
+        settings: &[String],
+    ) -> Result<Self, SettingError> {
+        let robot_error = |file: String, e: String| SettingError::File { file, reason: e };
+        let mut scenario =
+            Self::paper().map_err(|e| robot_error("assets/ers7.urdf".into(), e.to_string()))?;
+        if let Some(path) = urdf {
+            let name = path.display().to_string();
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| robot_error(name.clone(), e.to_string()))?;
+            scenario.description = RobotDescription::from_urdf_str(&text)
+                .map_err(|e| robot_error(name.clone(), e.to_string()))?;
+            scenario.urdf_text = text;
+        }
         if let Some(path) = file {
             let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
                 file: path.display().to_string(),

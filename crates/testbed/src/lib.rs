@@ -10,6 +10,7 @@ pub mod behaviour;
 pub mod experiment;
 pub mod measure;
 pub mod metrics;
+pub mod output;
 pub mod seeds;
 pub mod synthetic;
 pub mod trial;
