@@ -78,15 +78,23 @@ pub struct Scenario {
 }
 
 /// The settings `--set` understands.
-pub const SETTING_KEYS: [&str; 9] = [
+pub const SETTING_KEYS: [&str; 17] = [
     "learner.gamma",
     "learner.beta",
     "learner.t_start",
     "learner.sensor_degree",
     "learner.action_degree",
     "camera.noise_px",
+    "camera.width_px",
+    "camera.height_px",
+    "camera.hfov_deg",
+    "camera.vfov_deg",
+    "camera.frame_period_s",
     "world.friction",
+    "world.start_distance_m",
     "beacon.height_m",
+    "beacon.centre_m",
+    "beacon.radius_m",
     "trial.duration",
 ];
 
@@ -199,6 +207,9 @@ impl Scenario {
         let count = || -> Result<usize, SettingError> {
             value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
         };
+        let pixels = || -> Result<u32, SettingError> {
+            value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
+        };
         match key {
             "learner.gamma" => self.learner.gamma = number()?,
             "learner.beta" => self.learner.beta = number()?,
@@ -206,6 +217,14 @@ impl Scenario {
             "learner.sensor_degree" => self.learner.sensor_degree = count()?,
             "learner.action_degree" => self.learner.action_degree = count()?,
             "camera.noise_px" => self.sim.camera.noise_px = number()?,
+            "camera.width_px" => self.sim.camera.intrinsics.width_px = pixels()?,
+            "camera.height_px" => self.sim.camera.intrinsics.height_px = pixels()?,
+            "camera.hfov_deg" => self.sim.camera.intrinsics.hfov_deg = number()?,
+            "camera.vfov_deg" => self.sim.camera.intrinsics.vfov_deg = number()?,
+            "camera.frame_period_s" => self.sim.camera.frame_period_s = number()?,
+            "world.start_distance_m" => self.sim.start_distance_m = number()?,
+            "beacon.centre_m" => self.sim.beacon.band_centre_m = number()?,
+            "beacon.radius_m" => self.sim.beacon.radius_m = number()?,
             "world.friction" => self.sim.friction = number()?,
             "beacon.height_m" => self.sim.beacon.band_height_m = number()?,
             "trial.duration" => {
