@@ -410,6 +410,19 @@ impl Figures {
         }
     }
 
+    /// Every field `value`.
+    pub fn filled(value: f64) -> Self {
+        Self {
+            action_rmse_mm_s: value,
+            sensor_rmse_mm: value,
+            action_best_rmse_mm_s: value,
+            sensor_best_rmse_mm: value,
+            action_a0_rmse_mm_s: value,
+            consistency: value,
+            realtime_factor: value,
+        }
+    }
+
     /// Mean over trials, field by field.
     pub fn mean(values: &[Self]) -> Self {
         Self::map(values, |v| v.iter().sum::<f64>() / v.len() as f64)
@@ -473,6 +486,30 @@ pub fn learner_for(scenario: &Scenario, reference: &Reference) -> Result<Scasm, 
     Scasm::new(params, mode).map_err(|e| e.to_string())
 }
 
+/// Runs one trial of `scenario` from `seed`, judged against `models`.
+pub fn run_one(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+) -> Result<(TrialOutcome, Scasm), TrialError> {
+    let reference = models.reference();
+    let mut learner = learner_for(scenario, &reference).map_err(TrialError::LearnerSetup)?;
+    let config = TrialConfig {
+        duration_s: scenario.duration_s,
+        seed,
+        behaviour: behaviour_for(models),
+        judge_every_s: 5.0,
+    };
+    let outcome = trial::run_trial(
+        &scenario.description,
+        scenario.sim,
+        config,
+        &mut learner as &mut dyn CalibrationLearner,
+        &reference,
+    )?;
+    Ok((outcome, learner))
+}
+
 /// Runs one trial per seed in parallel, calling `done` as each finishes.
 pub fn run_trials(
     scenario: &Scenario,
@@ -480,28 +517,12 @@ pub fn run_trials(
     seeds: &[u64],
     done: &(dyn Fn(&TrialOutcome) + Sync),
 ) -> Result<Vec<(TrialOutcome, Scasm)>, TrialError> {
-    let reference = models.reference();
-    let behaviour = behaviour_for(models);
     seeds
         .par_iter()
         .map(|&seed| {
-            let mut learner =
-                learner_for(scenario, &reference).map_err(TrialError::LearnerSetup)?;
-            let config = TrialConfig {
-                duration_s: scenario.duration_s,
-                seed,
-                behaviour,
-                judge_every_s: 5.0,
-            };
-            let outcome = trial::run_trial(
-                &scenario.description,
-                scenario.sim,
-                config,
-                &mut learner as &mut dyn CalibrationLearner,
-                &reference,
-            )?;
-            done(&outcome);
-            Ok((outcome, learner))
+            let result = run_one(scenario, models, seed)?;
+            done(&result.0);
+            Ok(result)
         })
         .collect()
 }

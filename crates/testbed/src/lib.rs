@@ -12,5 +12,6 @@ pub mod measure;
 pub mod metrics;
 pub mod output;
 pub mod seeds;
+pub mod sweep;
 pub mod synthetic;
 pub mod trial;

@@ -1,0 +1,449 @@
+//! Parameter sweeps: every combination of some settings' values, times every
+//! seed, through the same trial code as `train`. Runs have stable keys, so a sweep
+//! can be split into deterministic shards, resumed after a kill, and merged.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use crate::experiment::{Figures, Scenario, SettingError};
+use crate::output;
+use crate::trial::TrialOutcome;
+
+/// A sweep that cannot be set up or read back.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SweepError {
+    /// A list or range of values is malformed.
+    #[error("bad values `{spec}` for {key}: {reason}")]
+    Values {
+        /// The setting swept.
+        key: String,
+        /// The values as given.
+        spec: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A setting cannot be applied.
+    #[error(transparent)]
+    Setting(#[from] SettingError),
+    /// `--shard K/N` is malformed.
+    #[error("bad shard `{0}`: expected K/N with 1 <= K <= N")]
+    Shard(String),
+    /// A results file cannot be read or written.
+    #[error("{path}: {reason}")]
+    File {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// One setting and the values it takes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Axis {
+    /// The setting's key, as for `--set`.
+    pub key: String,
+    /// Its values, as text for `--set`.
+    pub values: Vec<String>,
+}
+
+impl Axis {
+    /// Values from a list `a,b,c` or an inclusive range `start:step:stop`.
+    pub fn parse(key: &str, spec: &str) -> Result<Self, SweepError> {
+        let bad = |reason: &str| SweepError::Values {
+            key: key.into(),
+            spec: spec.into(),
+            reason: reason.into(),
+        };
+        let values: Vec<String> = if spec.contains(':') {
+            let parts: Vec<f64> = spec
+                .split(':')
+                .map(|p| p.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| bad("a range is start:step:stop of numbers"))?;
+            let [start, step, stop] = parts[..] else {
+                return Err(bad("a range is start:step:stop"));
+            };
+            if !(step > 0.0 && stop >= start && ((stop - start) / step) < 10_000.0) {
+                return Err(bad(
+                    "a range needs step > 0, stop >= start, and at most 10000 values",
+                ));
+            }
+            let n = ((stop - start) / step + 1e-9).floor() as usize;
+            (0..=n)
+                .map(|i| format!("{}", start + i as f64 * step))
+                .collect()
+        } else {
+            spec.split(',').map(|v| v.trim().to_string()).collect()
+        };
+        if values.iter().any(String::is_empty) {
+            return Err(bad("empty value"));
+        }
+        Ok(Self {
+            key: key.into(),
+            values,
+        })
+    }
+}
+
+/// One run of a sweep: a combination of values and a seed.
+#[derive(Debug, Clone, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Run {
+    /// `(key, value)` per axis, in the axes' order.
+    pub settings: Vec<(String, String)>,
+    /// The trial's master seed.
+    pub seed: u64,
+}
+
+impl Run {
+    /// A stable key naming the run: its settings and seed.
+    pub fn key(&self) -> String {
+        let mut k: Vec<String> = self
+            .settings
+            .iter()
+            .map(|(a, v)| format!("{a}={v}"))
+            .collect();
+        k.push(format!("seed={}", self.seed));
+        k.join(";")
+    }
+
+    /// The key of its combination (without the seed).
+    pub fn combination_key(&self) -> String {
+        self.settings
+            .iter()
+            .map(|(a, v)| format!("{a}={v}"))
+            .collect::<Vec<_>>()
+            .join(";")
+    }
+
+    /// The run's scenario: `base` with the run's settings applied.
+    pub fn scenario(&self, base: &Scenario) -> Result<Scenario, SettingError> {
+        let mut s = base.clone();
+        for (k, v) in &self.settings {
+            s.set(&format!("{k}={v}"))?;
+        }
+        Ok(s)
+    }
+}
+
+/// Every combination of the axes' values times every seed, in a fixed order
+/// (the first axis varies slowest, the seed fastest).
+pub fn runs(axes: &[Axis], seeds: &[u64]) -> Vec<Run> {
+    let mut combos: Vec<Vec<(String, String)>> = vec![Vec::new()];
+    for axis in axes {
+        combos = combos
+            .into_iter()
+            .flat_map(|c| {
+                axis.values.iter().map(move |v| {
+                    let mut c = c.clone();
+                    c.push((axis.key.clone(), v.clone()));
+                    c
+                })
+            })
+            .collect();
+    }
+    combos
+        .into_iter()
+        .flat_map(|settings| {
+            seeds.iter().map(move |&seed| Run {
+                settings: settings.clone(),
+                seed,
+            })
+        })
+        .collect()
+}
+
+/// `K/N` into `(k, n)`, 1 <= k <= n.
+pub fn parse_shard(spec: &str) -> Result<(usize, usize), SweepError> {
+    let bad = || SweepError::Shard(spec.into());
+    let (k, n) = spec.split_once('/').ok_or_else(bad)?;
+    let (k, n): (usize, usize) = (
+        k.trim().parse().map_err(|_| bad())?,
+        n.trim().parse().map_err(|_| bad())?,
+    );
+    if k == 0 || n == 0 || k > n {
+        return Err(bad());
+    }
+    Ok((k, n))
+}
+
+/// Shard `k` of `n`: every `n`-th run from the `k`-th. Shards are disjoint and
+/// together cover all runs, whatever the machine that runs them.
+pub fn shard(runs: Vec<Run>, k: usize, n: usize) -> Vec<Run> {
+    runs.into_iter()
+        .enumerate()
+        .filter(|(i, _)| i % n == k - 1)
+        .map(|(_, r)| r)
+        .collect()
+}
+
+/// The metrics' column names, in `summary.json`'s terms.
+pub const METRICS: [&str; 7] = [
+    "action_rmse_mm_s",
+    "sensor_rmse_mm",
+    "action_best_rmse_mm_s",
+    "sensor_best_rmse_mm",
+    "action_a0_rmse_mm_s",
+    "consistency",
+    "realtime_factor",
+];
+
+fn metric_values(f: &Figures) -> [f64; 7] {
+    [
+        f.action_rmse_mm_s,
+        f.sensor_rmse_mm,
+        f.action_best_rmse_mm_s,
+        f.sensor_best_rmse_mm,
+        f.action_a0_rmse_mm_s,
+        f.consistency,
+        f.realtime_factor,
+    ]
+}
+
+/// One combination's figures over its seeds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CombinationSummary {
+    /// The combination's settings.
+    pub settings: Vec<(String, String)>,
+    /// Runs that finished `ok`.
+    pub runs_ok: usize,
+    /// Mean over those runs (NaN if none).
+    pub mean: Figures,
+    /// Standard deviation over those runs (NaN if none).
+    pub std: Figures,
+}
+
+/// One finished run's row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// The run.
+    pub run: Run,
+    /// Its figures (NaN where a model was never learned or diverged).
+    pub figures: Figures,
+    /// `ok`, `no model`, `diverged` or `error: ...` (see [`status_of`]).
+    pub status: String,
+}
+
+/// The sweep's results, kept whole in memory and written whole to `sweep.csv`.
+#[derive(Debug, Clone, Default)]
+pub struct Results {
+    keys: Vec<String>,
+    rows: BTreeMap<String, Row>,
+}
+
+fn header(keys: &[String]) -> String {
+    let mut h: Vec<String> = keys.to_vec();
+    h.push("seed".into());
+    h.extend(METRICS.iter().map(|m| m.to_string()));
+    h.push("status".into());
+    h.join(",")
+}
+
+impl Results {
+    /// Empty results for runs over these setting keys.
+    pub fn new(keys: Vec<String>) -> Self {
+        Self {
+            keys,
+            rows: BTreeMap::new(),
+        }
+    }
+
+    /// Whether a run has finished.
+    pub fn has(&self, run: &Run) -> bool {
+        self.rows.contains_key(&run.key())
+    }
+
+    /// Records a finished run.
+    pub fn insert(&mut self, row: Row) {
+        self.rows.insert(row.run.key(), row);
+    }
+
+    /// The finished runs, by key.
+    pub fn rows(&self) -> impl Iterator<Item = &Row> {
+        self.rows.values()
+    }
+
+    /// Writes `sweep.csv` into `dir`, whole.
+    pub fn write(&self, dir: &Path) -> Result<(), SweepError> {
+        let path = dir.join("sweep.csv");
+        output::write_csv(
+            &path,
+            &header(&self.keys),
+            self.rows.values().map(|r| {
+                let mut cells: Vec<String> =
+                    r.run.settings.iter().map(|(_, v)| v.clone()).collect();
+                cells.push(r.run.seed.to_string());
+                cells.extend(metric_values(&r.figures).iter().map(|v| v.to_string()));
+                cells.push(r.status.replace(',', ";"));
+                cells.join(",")
+            }),
+        )
+        .map_err(|e| file_error(&path, e))
+    }
+
+    /// Reads `sweep.csv` from `dir`; its setting columns are what precedes
+    /// `seed` in its header. `None` if there is no such file yet.
+    pub fn read(dir: &Path) -> Result<Option<Self>, SweepError> {
+        let path = dir.join("sweep.csv");
+        let text = match std::fs::read_to_string(&path) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(e) => return Err(file_error(&path, e)),
+        };
+        let mut lines = text.lines();
+        let head = lines.next().unwrap_or("");
+        let columns: Vec<&str> = head.split(',').collect();
+        let keys: Vec<String> = match columns.iter().position(|c| *c == "seed") {
+            Some(i) => columns[..i].iter().map(|c| c.to_string()).collect(),
+            None => {
+                return Err(SweepError::File {
+                    path: path.display().to_string(),
+                    reason: "no `seed` column: not a sweep's results".into(),
+                });
+            }
+        };
+        if head != header(&keys) {
+            return Err(SweepError::File {
+                path: path.display().to_string(),
+                reason: format!("columns `{head}` are not a sweep's"),
+            });
+        }
+        let mut results = Self::new(keys.clone());
+        let keys = &keys;
+        for (n, line) in lines.enumerate() {
+            let cells: Vec<&str> = line.split(',').collect();
+            let bad = |reason: &str| SweepError::File {
+                path: path.display().to_string(),
+                reason: format!("line {}: {reason}", n + 2),
+            };
+            if cells.len() != keys.len() + 2 + METRICS.len() {
+                return Err(bad("wrong number of columns"));
+            }
+            let settings = keys
+                .iter()
+                .zip(&cells)
+                .map(|(k, v)| (k.clone(), v.to_string()))
+                .collect();
+            let seed = cells[keys.len()].parse().map_err(|_| bad("bad seed"))?;
+            let m: Vec<f64> = cells[keys.len() + 1..keys.len() + 1 + METRICS.len()]
+                .iter()
+                .map(|c| c.parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| bad("bad number"))?;
+            let figures = Figures {
+                action_rmse_mm_s: m[0],
+                sensor_rmse_mm: m[1],
+                action_best_rmse_mm_s: m[2],
+                sensor_best_rmse_mm: m[3],
+                action_a0_rmse_mm_s: m[4],
+                consistency: m[5],
+                realtime_factor: m[6],
+            };
+            results.insert(Row {
+                run: Run { settings, seed },
+                figures,
+                status: cells[cells.len() - 1].to_string(),
+            });
+        }
+        Ok(Some(results))
+    }
+
+    /// Mean and standard deviation per combination, over its runs that finished
+    /// `ok`.
+    pub fn summary(&self) -> Vec<CombinationSummary> {
+        let mut groups: BTreeMap<String, CombinationSummary> = BTreeMap::new();
+        let mut figures: BTreeMap<String, Vec<Figures>> = BTreeMap::new();
+        for r in self.rows.values() {
+            let key = r.run.combination_key();
+            groups
+                .entry(key.clone())
+                .or_insert_with(|| CombinationSummary {
+                    settings: r.run.settings.clone(),
+                    runs_ok: 0,
+                    mean: Figures::filled(f64::NAN),
+                    std: Figures::filled(f64::NAN),
+                });
+            let f = figures.entry(key).or_default();
+            if r.status == "ok" {
+                f.push(r.figures);
+            }
+        }
+        groups
+            .into_iter()
+            .map(|(key, mut g)| {
+                let f = &figures[&key];
+                if !f.is_empty() {
+                    (g.runs_ok, g.mean, g.std) = (f.len(), Figures::mean(f), Figures::std(f));
+                }
+                g
+            })
+            .collect()
+    }
+
+    /// Writes `sweep_summary.csv` into `dir`, whole: per combination, the number
+    /// of runs that finished ok and each metric's mean and std.
+    pub fn write_summary(&self, dir: &Path) -> Result<(), SweepError> {
+        let path = dir.join("sweep_summary.csv");
+        let mut h: Vec<String> = self.keys.clone();
+        h.push("runs_ok".into());
+        for m in METRICS {
+            h.push(format!("{m}_mean"));
+            h.push(format!("{m}_std"));
+        }
+        output::write_csv(
+            &path,
+            &h.join(","),
+            self.summary().into_iter().map(|g| {
+                let mut cells: Vec<String> = g.settings.into_iter().map(|(_, v)| v).collect();
+                cells.push(g.runs_ok.to_string());
+                for (m, s) in metric_values(&g.mean).iter().zip(metric_values(&g.std)) {
+                    cells.push(m.to_string());
+                    cells.push(s.to_string());
+                }
+                cells.join(",")
+            }),
+        )
+        .map_err(|e| file_error(&path, e))
+    }
+
+    /// The rows of another sweep over the same settings, added to these.
+    pub fn merge(&mut self, other: Results) -> Result<(), SweepError> {
+        if other.keys != self.keys {
+            return Err(SweepError::File {
+                path: "merge".into(),
+                reason: format!("settings {:?} differ from {:?}", other.keys, self.keys),
+            });
+        }
+        self.rows.extend(other.rows);
+        Ok(())
+    }
+
+    /// The setting keys (column order).
+    pub fn keys(&self) -> &[String] {
+        &self.keys
+    }
+}
+
+fn file_error(path: &Path, e: std::io::Error) -> SweepError {
+    SweepError::File {
+        path: path.display().to_string(),
+        reason: e.to_string(),
+    }
+}
+
+/// A finished trial's status: `ok`, `no model` (one was never determined by
+/// the data), or `diverged` (a model exists but its error is not finite).
+pub fn status_of(outcome: &TrialOutcome) -> String {
+    let j = &outcome.last;
+    if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
+        "no model".into()
+    } else if [j.action_rmse_mm_s, j.sensor_rmse_mm, j.consistency]
+        .iter()
+        .all(|v| v.is_some_and(f64::is_finite))
+    {
+        "ok".into()
+    } else {
+        "diverged".into()
+    }
+}

@@ -1,0 +1,256 @@
+//! Sweeps SCASM's hyper-parameters (or any other setting) over a grid, every
+//! combination times every seed, through the same trial code as `train`.
+//!
+//! Results go to DIR/sweep.csv (one row per finished run, rewritten whole as each
+//! run finishes) and DIR/sweep_summary.csv (mean and std per combination).
+//! Running again into the same DIR skips finished runs. `--shard K/N` runs a
+//! deterministic slice (for a batch scheduler's array job); `--merge DIR...`
+//! combines shards' results.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+use anyhow::{Context, Result, bail, ensure};
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use testbed::experiment::{self, Figures, MeasuredModels, Scenario};
+use testbed::sweep::{self, Axis, CombinationSummary, Results, Row};
+
+/// Sweep settings over a grid of values and seeds.
+#[derive(Debug, Parser)]
+struct Args {
+    /// Values of learner.gamma: a list a,b,c or a range start:step:stop.
+    #[arg(long)]
+    gamma: Option<String>,
+    /// Values of learner.beta.
+    #[arg(long)]
+    beta: Option<String>,
+    /// Values of learner.t_start, s.
+    #[arg(long = "t-start")]
+    t_start: Option<String>,
+    /// Any other setting to sweep, as key=values (repeatable), e.g. camera.noise_px=0.5,1.
+    #[arg(long = "axis", value_name = "KEY=VALUES")]
+    axes: Vec<String>,
+    /// Seeds as a range A..B (B excluded).
+    #[arg(long, default_value = "0..5")]
+    seeds: String,
+    /// A fixed setting as key=value (repeatable).
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// A scenario file.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// Robot description (default: the shipped one).
+    #[arg(long)]
+    urdf: Option<PathBuf>,
+    /// Run only shard K of N (1-based), e.g. 3/8.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Merge these sweeps' results into --out instead of running.
+    #[arg(long, num_args = 1..)]
+    merge: Vec<PathBuf>,
+    /// Results directory.
+    #[arg(long, default_value = "runs/sweep")]
+    out: PathBuf,
+    /// Where measured reference models are cached.
+    #[arg(long, default_value = "runs/.cache")]
+    cache: PathBuf,
+}
+
+fn parse_seeds(spec: &str) -> Result<Vec<u64>> {
+    let (a, b) = spec
+        .split_once("..")
+        .context("--seeds must look like A..B")?;
+    let (a, b): (u64, u64) = (a.trim().parse()?, b.trim().parse()?);
+    ensure!(a < b, "--seeds {spec} is empty");
+    Ok((a..b).collect())
+}
+
+fn axes(args: &Args) -> Result<Vec<Axis>> {
+    let mut axes = Vec::new();
+    for (key, spec) in [
+        ("learner.gamma", &args.gamma),
+        ("learner.beta", &args.beta),
+        ("learner.t_start", &args.t_start),
+    ] {
+        if let Some(spec) = spec {
+            axes.push(Axis::parse(key, spec)?);
+        }
+    }
+    for a in &args.axes {
+        let (key, spec) = a
+            .split_once('=')
+            .context("--axis must look like key=values")?;
+        axes.push(Axis::parse(key.trim(), spec)?);
+    }
+    ensure!(
+        !axes.is_empty(),
+        "nothing to sweep: give --gamma, --beta, --t-start or --axis"
+    );
+    Ok(axes)
+}
+
+/// The combination with the lowest sum of relative errors (action over the
+/// velocity range, sensor over the 2.4 m distance range).
+fn best(results: &Results, velocity_range: f64) -> Option<CombinationSummary> {
+    let score = |m: &Figures| m.action_rmse_mm_s / velocity_range + m.sensor_rmse_mm / 2400.0;
+    results
+        .summary()
+        .into_iter()
+        .filter(|g| g.runs_ok > 0 && score(&g.mean).is_finite())
+        .min_by(|a, b| score(&a.mean).total_cmp(&score(&b.mean)))
+}
+
+fn report(results: &Results, velocity_range: f64) {
+    let Some(g) = best(results, velocity_range) else {
+        println!("no combination finished with both models learned");
+        return;
+    };
+    let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    println!(
+        "\nbest combination (lowest sum of relative errors, {} runs): {}",
+        g.runs_ok,
+        named.join(", ")
+    );
+    println!(
+        "  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
+        g.mean.action_rmse_mm_s, g.mean.sensor_rmse_mm, g.mean.consistency
+    );
+    println!(
+        "paper's constants, the first values it tried: learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20"
+    );
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+
+    if !args.merge.is_empty() {
+        let mut merged: Option<Results> = None;
+        for dir in &args.merge {
+            let r = Results::read(dir)?
+                .with_context(|| format!("{} has no sweep.csv", dir.display()))?;
+            match &mut merged {
+                None => merged = Some(r),
+                Some(m) => m.merge(r)?,
+            }
+        }
+        let merged = merged.context("nothing to merge")?;
+        merged.write(&args.out)?;
+        merged.write_summary(&args.out)?;
+        println!(
+            "merged {} runs into {}",
+            merged.rows().count(),
+            args.out.display()
+        );
+        return Ok(());
+    }
+
+    let axes = axes(&args)?;
+    let keys: Vec<String> = axes.iter().map(|a| a.key.clone()).collect();
+    let seeds = parse_seeds(&args.seeds)?;
+    let base = Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let mut runs = sweep::runs(&axes, &seeds);
+    let total = runs.len();
+    if let Some(spec) = &args.shard {
+        let (k, n) = sweep::parse_shard(spec)?;
+        runs = sweep::shard(runs, k, n);
+        println!("shard {k}/{n}: {} of {total} runs", runs.len());
+    }
+    // Every run's scenario is checked before anything runs.
+    let scenarios = runs
+        .iter()
+        .map(|r| r.scenario(&base))
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let mut results = match Results::read(&args.out)? {
+        Some(r) if r.keys() == keys.as_slice() => r,
+        Some(r) => bail!(
+            "{} holds a sweep over {:?}, not {:?}; use another --out",
+            args.out.display(),
+            r.keys(),
+            keys
+        ),
+        None => Results::new(keys.clone()),
+    };
+    let todo: Vec<usize> = (0..runs.len())
+        .filter(|&i| !results.has(&runs[i]))
+        .collect();
+    println!(
+        "{} runs ({} combinations x {} seeds{}), {} already done, {} to run",
+        runs.len(),
+        total / seeds.len(),
+        seeds.len(),
+        if args.shard.is_some() {
+            ", this shard"
+        } else {
+            ""
+        },
+        runs.len() - todo.len(),
+        todo.len()
+    );
+
+    // One measurement per distinct robot-and-world, before the runs share them.
+    let mut references: BTreeMap<String, MeasuredModels> = BTreeMap::new();
+    for &i in &todo {
+        let key = scenarios[i].reference_key();
+        if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
+            println!("measuring the reference models for {}...", slot.key());
+            slot.insert(experiment::measured_models(
+                &scenarios[i],
+                Some(&args.cache),
+            )?);
+        }
+    }
+
+    let bar = ProgressBar::new(todo.len() as u64).with_style(
+        ProgressStyle::with_template("  [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let shared = Mutex::new((results.clone(), None::<String>));
+    todo.par_iter().for_each(|&i| {
+        let (run, scenario) = (&runs[i], &scenarios[i]);
+        let models = &references[&scenario.reference_key()];
+        let best_possible = experiment::best_possible(&models.reference(), &scenario.learner);
+        let (figures, status) = match experiment::run_one(scenario, models, run.seed) {
+            Ok((outcome, _)) => (
+                Figures::of(&outcome, best_possible),
+                sweep::status_of(&outcome),
+            ),
+            Err(e) => (Figures::filled(f64::NAN), format!("error: {e}")),
+        };
+        if let Ok(mut guard) = shared.lock() {
+            guard.0.insert(Row {
+                run: run.clone(),
+                figures,
+                status,
+            });
+            if let Err(e) = guard.0.write(&args.out) {
+                guard.1.get_or_insert(e.to_string());
+            }
+        }
+        bar.inc(1);
+    });
+    bar.finish();
+    let (done, write_error) = shared.into_inner().unwrap_or_else(|p| p.into_inner());
+    if let Some(e) = write_error {
+        bail!("writing results: {e}");
+    }
+    results = done;
+    results.write(&args.out)?;
+    results.write_summary(&args.out)?;
+    let velocity_range = references
+        .values()
+        .next()
+        .map(|m| {
+            let v: Vec<f64> = m.action.iter().map(|a| a.1).collect();
+            v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
+        })
+        .unwrap_or(600.0);
+    report(&results, velocity_range);
+    println!("results in {}", args.out.display());
+    Ok(())
+}
