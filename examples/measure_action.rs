@@ -8,7 +8,6 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Parser;
 use scasm::Polynomial;
-use testbed::experiment::Scenario;
 use testbed::measure::{self, StopwatchConfig};
 use testbed::{metrics, output};
 
@@ -18,21 +17,13 @@ struct Args {
     /// Directory for measured_action.csv.
     #[arg(long, default_value = ".")]
     out: PathBuf,
-    /// Robot description (default: the shipped assets/ers7.urdf).
-    #[arg(long)]
-    urdf: Option<PathBuf>,
-    /// A setting as key=value (repeatable), as for `train`.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// A scenario file (TOML, e.g. assets/scenarios/paper.toml); --set overrides it.
-    #[arg(long)]
-    config: Option<PathBuf>,
+    #[command(flatten)]
+    scenario: scasm_testbed::ScenarioArgs,
 }
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    let scenario =
-        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let scenario = args.scenario.scenario()?;
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
     let commands = measure::paper_commands();

@@ -9,7 +9,6 @@ use anyhow::{Context, Result, ensure};
 use clap::Parser;
 use quadsim::vision::{self, find_band};
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig};
-use testbed::experiment::Scenario;
 use testbed::{measure, output};
 
 /// Measure the beacon-height-to-distance curve of the simulated camera.
@@ -24,15 +23,8 @@ struct Args {
     /// Also save a PNG of the camera's view at each distance.
     #[arg(long)]
     save_frame: bool,
-    /// Robot description (default: the shipped assets/ers7.urdf).
-    #[arg(long)]
-    urdf: Option<PathBuf>,
-    /// A setting as key=value (repeatable), as for `train`.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// A scenario file (TOML, e.g. assets/scenarios/paper.toml); --set overrides it.
-    #[arg(long)]
-    config: Option<PathBuf>,
+    #[command(flatten)]
+    scenario: scasm_testbed::ScenarioArgs,
 }
 
 fn save_frame(
@@ -85,8 +77,7 @@ fn save_frame(
 fn main() -> Result<()> {
     let args = Args::parse();
     ensure!(args.readings > 0, "--readings must be at least 1");
-    let scenario =
-        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let scenario = args.scenario.scenario()?;
     let (description, config) = (&scenario.description, scenario.sim);
     let distances = measure::paper_distances_m();
     let started = std::time::Instant::now();

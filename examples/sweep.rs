@@ -15,7 +15,7 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use testbed::experiment::{self, Figures, MeasuredModels, Scenario};
+use testbed::experiment::{self, Figures, MeasuredModels};
 use testbed::sweep::{self, Axis, CombinationSummary, Results, Row};
 
 /// Sweep settings over a grid of values and seeds.
@@ -36,15 +36,6 @@ struct Args {
     /// Seeds as a range A..B (B excluded).
     #[arg(long, default_value = "0..5")]
     seeds: String,
-    /// A fixed setting as key=value (repeatable).
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// A scenario file.
-    #[arg(long)]
-    config: Option<PathBuf>,
-    /// Robot description (default: the shipped one).
-    #[arg(long)]
-    urdf: Option<PathBuf>,
     /// Run only shard K of N (1-based), e.g. 3/8.
     #[arg(long)]
     shard: Option<String>,
@@ -57,6 +48,8 @@ struct Args {
     /// Where measured reference models are cached.
     #[arg(long, default_value = "runs/.cache")]
     cache: PathBuf,
+    #[command(flatten)]
+    scenario: scasm_testbed::ScenarioArgs,
 }
 
 fn parse_seeds(spec: &str) -> Result<Vec<u64>> {
@@ -152,7 +145,7 @@ fn main() -> Result<()> {
     let axes = axes(&args)?;
     let keys: Vec<String> = axes.iter().map(|a| a.key.clone()).collect();
     let seeds = parse_seeds(&args.seeds)?;
-    let base = Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let base = args.scenario.scenario()?;
     let mut runs = sweep::runs(&axes, &seeds);
     let total = runs.len();
     if let Some(spec) = &args.shard {

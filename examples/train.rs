@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
-use testbed::experiment::{self, Figures, LearningMode, Scenario};
+use testbed::experiment::{self, Figures, LearningMode};
 use testbed::output;
 use testbed::trial::TrialOutcome;
 
@@ -27,12 +27,6 @@ struct Args {
     /// Trial length, s.
     #[arg(long)]
     duration: Option<f64>,
-    /// A setting as key=value (repeatable), e.g. learner.gamma=0.995.
-    #[arg(long = "set", value_name = "KEY=VALUE")]
-    set: Vec<String>,
-    /// A scenario file (TOML, e.g. assets/scenarios/paper.toml); --set overrides it.
-    #[arg(long)]
-    config: Option<PathBuf>,
     /// The learner (only `scasm` so far).
     #[arg(long, default_value = "scasm")]
     learner: String,
@@ -42,12 +36,11 @@ struct Args {
     /// Run directory (default: runs/train-<unix time>).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Robot description (default: the shipped assets/ers7.urdf).
-    #[arg(long)]
-    urdf: Option<PathBuf>,
     /// Where measured reference models are cached.
     #[arg(long, default_value = "runs/.cache")]
     cache: PathBuf,
+    #[command(flatten)]
+    scenario: scasm_testbed::ScenarioArgs,
 }
 
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -121,8 +114,7 @@ fn main() -> Result<()> {
         bail!("unknown learner `{}`; available: scasm", args.learner);
     }
     let seeds = parse_seeds(&args)?;
-    let mut scenario =
-        Scenario::from_settings(args.urdf.as_deref(), args.config.as_deref(), &args.set)?;
+    let mut scenario = args.scenario.scenario()?;
     if let Some(d) = args.duration {
         scenario.set(&format!("trial.duration={d}"))?;
     }
