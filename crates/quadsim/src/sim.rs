@@ -539,6 +539,14 @@ impl QuadrupedSim {
         }
     }
 
+    /// Ground truth: whether the torso is upright (its up axis has a world z
+    /// component above 0.8), the criterion for "has not fallen". Cheap enough to
+    /// ask every physics step.
+    pub fn is_upright(&self) -> bool {
+        let up = self.world.bodies[self.torso].position().rotation * Vector::Z;
+        up.z > 0.8
+    }
+
     /// Ground truth: the torso's distance to the beacon measured along the line of
     /// approach (the line from the beacon through the start), m.
     pub fn distance_along_line_m(&self) -> f64 {

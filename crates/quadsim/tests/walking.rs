@@ -15,7 +15,7 @@ fn walk(command: f64, seconds: f64) -> (f64, bool) {
     let mut upright = true;
     for _ in 0..(seconds / 0.1) as usize {
         sim.advance(0.1);
-        upright &= sim.torso().up[2] > 0.8;
+        upright &= sim.is_upright();
     }
     (
         1000.0 * (d0 - sim.distance_along_line_m()) / seconds,

@@ -61,7 +61,7 @@ pub fn time_command(
         let n = (seconds / dt).round() as u64;
         for _ in 0..n {
             sim.step();
-            *upright &= sim.torso().up[2] > 0.8;
+            *upright &= sim.is_upright();
         }
     };
     run(&mut sim, stopwatch.stand_s, &mut upright);
@@ -72,7 +72,7 @@ pub fn time_command(
         let (start_d, start_t) = (sim.distance_along_line_m(), sim.time_s());
         loop {
             sim.step();
-            upright &= sim.torso().up[2] > 0.8;
+            upright &= sim.is_upright();
             let covered = start_d - sim.distance_along_line_m();
             let elapsed = sim.time_s() - start_t;
             if covered.abs() >= stopwatch.distance_m || elapsed >= stopwatch.max_timing_s {

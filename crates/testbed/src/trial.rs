@@ -164,7 +164,7 @@ impl TrialRunner {
         self.sim.set_command(command).map_err(SimError::from)?;
         let frame = loop {
             self.sim.step();
-            self.fell |= self.sim.torso().up[2] <= 0.8;
+            self.fell |= !self.sim.is_upright();
             if let Some(f) = self.sim.take_frame() {
                 break f;
             }
