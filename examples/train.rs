@@ -2,8 +2,9 @@
 //! robot's action and sensor models at once, judged by the paper's protocol
 //! against the models measured by stopwatch and by standing at marked distances.
 //!
-//! Writes a run directory with summary.json, the measured models, and per trial
-//! its trace and learned models.
+//! Writes a run directory with summary.json, the measured models, per trial its
+//! trace and learned models, the section IV and V demonstrations, the paper's
+//! figures as PNG and SVG, and index.html showing them beside the results table.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -11,6 +12,9 @@ use std::sync::Mutex;
 use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
+use report::page::Page;
+use scasm::Polynomial;
+use testbed::demos::{Demos, run_demos};
 use testbed::experiment::{self, Figures, LearningMode};
 use testbed::output;
 use testbed::trial::TrialOutcome;
@@ -62,52 +66,40 @@ fn parse_seeds(args: &Args) -> Result<Vec<u64>> {
     }
 }
 
-fn opt(v: Option<f64>) -> String {
-    v.map(|x| x.to_string()).unwrap_or_default()
+fn write_models(path: &Path, action: Option<Polynomial>, sensor: Option<Polynomial>) -> Result<()> {
+    let models = serde_json::json!({
+        "action": action.map(|p| p.coeffs().to_vec()),
+        "sensor": sensor.map(|p| p.coeffs().to_vec()),
+    });
+    std::fs::write(path, serde_json::to_string_pretty(&models)?)?;
+    Ok(())
 }
 
 fn write_trial(dir: &Path, outcome: &TrialOutcome) -> Result<()> {
     let dir = dir.join(format!("trial-{}", outcome.seed));
     std::fs::create_dir_all(&dir)?;
-    output::write_csv(
-        &dir.join("trace.csv"),
-        "t,command,obs,x_true_mm,x_a,x_s",
-        outcome.trace.iter().map(|r| {
-            format!(
-                "{},{},{},{},{},{}",
-                r.t_s,
-                r.command,
-                opt(r.obs_px),
-                r.x_true_mm,
-                opt(r.x_a),
-                opt(r.x_s)
-            )
-        }),
-    )?;
-    output::write_csv(
-        &dir.join("errors_over_time.csv"),
-        "t,action_rmse_mm_s,sensor_rmse_mm,consistency",
-        outcome.over_time.iter().map(|j| {
-            format!(
-                "{},{},{},{}",
-                j.t_s,
-                opt(j.action_rmse_mm_s),
-                opt(j.sensor_rmse_mm),
-                opt(j.consistency)
-            )
-        }),
-    )?;
-    let models = serde_json::json!({
-        "action": outcome.action_model.map(|p| p.coeffs().to_vec()),
-        "sensor": outcome.sensor_model.map(|p| p.coeffs().to_vec()),
-    });
-    std::fs::write(
-        dir.join("models.json"),
-        serde_json::to_string_pretty(&models)?,
-    )?;
-    Ok(())
+    output::write_trace(&dir.join("trace.csv"), &outcome.trace)?;
+    output::write_errors_over_time(&dir.join("errors_over_time.csv"), &outcome.over_time)?;
+    write_models(
+        &dir.join("models.json"),
+        outcome.action_model,
+        outcome.sensor_model,
+    )
 }
 
+fn write_demos(dir: &Path, demos: &Demos) -> Result<()> {
+    let dir = dir.join("demos");
+    std::fs::create_dir_all(&dir)?;
+    for (name, run) in [
+        ("constant_walk", &demos.constant_walk),
+        ("sensor_from_a0", &demos.sensor_from_a0),
+        ("action_from_rough_sensor", &demos.action_from_rough_sensor),
+    ] {
+        output::write_trace(&dir.join(format!("{name}.csv")), &run.trace)?;
+        write_models(&dir.join(format!("{name}.json")), run.action, run.sensor)?;
+    }
+    Ok(())
+}
 fn main() -> Result<()> {
     let args = Args::parse();
     if args.learner != "scasm" {
@@ -205,54 +197,187 @@ fn main() -> Result<()> {
 
     let velocity_range = models.action.iter().map(|a| a.1).fold(f64::MIN, f64::max)
         - models.action.iter().map(|a| a.1).fold(f64::MAX, f64::min);
-    let distance_range = 2400.0;
+    let distance_range = models.sensor.iter().map(|s| s.0).fold(f64::MIN, f64::max)
+        - models.sensor.iter().map(|s| s.0).fold(f64::MAX, f64::min);
+    let (header, rows) = results_table(&mean, &std, velocity_range, distance_range);
     println!();
-    println!(
-        "{:<14} {:>24} {:>16} {:>12} {:>10}",
-        "figure", "ours (mean +- std)", "paper", "best poly", "A0"
-    );
-    println!(
-        "{:<14} {:>14.1} +- {:>5.1} {:>16} {:>12.1} {:>10.1}",
-        "action mm/s",
-        mean.action_rmse_mm_s,
-        std.action_rmse_mm_s,
-        "29.6",
-        mean.action_best_rmse_mm_s,
-        mean.action_a0_rmse_mm_s
-    );
-    println!(
-        "{:<14} {:>14.1} +- {:>5.1} {:>16} {:>12.1}",
-        "sensor mm",
-        mean.sensor_rmse_mm,
-        std.sensor_rmse_mm,
-        "70.4 +- 13.9",
-        mean.sensor_best_rmse_mm
-    );
-    println!(
-        "{:<14} {:>14.3} +- {:>5.3} {:>16}",
-        "consistency", mean.consistency, std.consistency, "0.08 +- 0.06"
-    );
-    println!(
-        "\naction error {:.1} % of the {:.0} mm/s velocity range (paper 4.9 %); sensor error {:.1} % of the {:.0} mm distance range (paper 2.9 %)",
-        100.0 * mean.action_rmse_mm_s / velocity_range,
-        velocity_range,
-        100.0 * mean.sensor_rmse_mm / distance_range,
-        distance_range
-    );
-    println!(
-        "learned / best possible: action {:.2}x, sensor {:.2}x",
+    print_table(&header, &rows);
+    let ratios = format!(
+        "learned / best possible polynomial: action {:.2}x, sensor {:.2}x (paper {:.2}x, {:.2}x)",
         mean.action_rmse_mm_s / mean.action_best_rmse_mm_s,
-        mean.sensor_rmse_mm / mean.sensor_best_rmse_mm
+        mean.sensor_rmse_mm / mean.sensor_best_rmse_mm,
+        paper.action_rmse_mm_s / paper.action_best_rmse_mm_s,
+        paper.sensor_rmse_mm / paper.sensor_best_rmse_mm,
     );
+    println!("{ratios}");
     if !fell.is_empty() {
         println!("the robot tipped over in trials {fell:?}");
     }
+
+    println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
+    let demos = run_demos(&scenario, &models, seeds[0])?;
+    write_demos(&out, &demos)?;
+    let outcomes: Vec<TrialOutcome> = results.into_iter().map(|(o, _)| o).collect();
+    let data = report::paper::RunData {
+        measured: &models,
+        trials: &outcomes,
+        demos: &demos,
+        best: (best.0, best.1),
+    };
+    let figures = report::paper::write_figures(&out, &data)?;
+    let page = Page {
+        title: "SCASM on the simulated quadruped".into(),
+        paragraphs: vec![
+            format!(
+                "{} trials of {} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
+                outcomes.len(),
+                scenario.duration_s,
+                seeds[0],
+                seeds[seeds.len() - 1] + 1,
+                args.learner,
+                scenario.mode
+            ),
+            ratios,
+            format!("Reference cache key {}.", scenario.reference_key()),
+        ],
+        header,
+        rows,
+        figures: figures
+            .iter()
+            .map(|f| (f.stem.to_string(), caption(f.stem).to_string()))
+            .collect(),
+    };
+    page.write(&out.join("index.html"))?;
+    println!(
+        "  {} figures (PNG and SVG) and index.html written",
+        figures.len()
+    );
+
     println!(
         "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",
-        results.len(),
+        outcomes.len(),
         mean.realtime_factor,
         started.elapsed().as_secs_f64(),
         out.display()
     );
     Ok(())
+}
+
+/// The results beside the paper's, as rows of text (for the console and the page).
+fn results_table(
+    mean: &Figures,
+    std: &Figures,
+    velocity_range: f64,
+    distance_range: f64,
+) -> (Vec<String>, Vec<Vec<String>>) {
+    let header = [
+        "figure",
+        "ours (mean +- std)",
+        "paper",
+        "best poly (ours / paper)",
+        "A0 (ours / paper)",
+    ]
+    .map(String::from)
+    .to_vec();
+    let paper = Figures::paper();
+    let rows = vec![
+        vec![
+            "action RMSE (mm/s)".into(),
+            format!(
+                "{:.1} +- {:.1} ({:.1} % of {:.0})",
+                mean.action_rmse_mm_s,
+                std.action_rmse_mm_s,
+                100.0 * mean.action_rmse_mm_s / velocity_range,
+                velocity_range
+            ),
+            format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
+            format!(
+                "{:.1} / {:.1}",
+                mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s
+            ),
+            format!(
+                "{:.1} / {:.1}",
+                mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s
+            ),
+        ],
+        vec![
+            "sensor RMSE (mm)".into(),
+            format!(
+                "{:.1} +- {:.1} ({:.1} % of {:.0})",
+                mean.sensor_rmse_mm,
+                std.sensor_rmse_mm,
+                100.0 * mean.sensor_rmse_mm / distance_range,
+                distance_range
+            ),
+            format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
+            format!(
+                "{:.1} / {:.1}",
+                mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm
+            ),
+            "-".into(),
+        ],
+        vec![
+            "consistency".into(),
+            format!("{:.3} +- {:.3}", mean.consistency, std.consistency),
+            format!("{:.2} +- 0.06", paper.consistency),
+            "-".into(),
+            "-".into(),
+        ],
+    ];
+    (header, rows)
+}
+
+fn print_table(header: &[String], rows: &[Vec<String>]) {
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            std::iter::once(header)
+                .chain(rows.iter().map(Vec::as_slice))
+                .map(|r| r.get(c).map_or(0, |s| s.chars().count()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    for row in std::iter::once(header).chain(rows.iter().map(Vec::as_slice)) {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            .map(|(i, (c, &w))| {
+                if i == 0 {
+                    format!("{c:<w$}")
+                } else {
+                    format!("{c:>w$}")
+                }
+            })
+            .collect();
+        println!("{}", cells.join("  "));
+    }
+}
+
+/// What each figure shows (the page's captions).
+fn caption(stem: &str) -> &'static str {
+    match stem {
+        "fig2a" => {
+            "Fig. 2a. Readings against time while walking forwards at one constant command, with the best-fit cubic of time on reading: a sensor model in seconds of this walk (section IV)."
+        }
+        "fig2b" => {
+            "Fig. 2b. Readings against x_a dead-reckoned by the identity action model A0 over one cycle (+ forwards, x backwards), with the cubic fitted to all of them. A0 is wrong, so forwards and backwards disagree; the cubic still has the right shape."
+        }
+        "fig3" => {
+            "Fig. 3. x_s = S(obs) by the rough S of Fig. 2a over one cycle, with the piecewise-linear path of the action model learned from it: slope A(C(t)), x(0) from the fit (section V)."
+        }
+        "fig6" => {
+            "Fig. 6. x_s (+) and x_a (line) over the typical trial (median final sensor error) while both models learn: they come into agreement."
+        }
+        "fig7a" => {
+            "Fig. 7a. Measured velocity per command (stopwatch protocol, +- 1 std) and the typical trial's learned action model after its best scale."
+        }
+        "fig7b" => {
+            "Fig. 7b. Measured distance per reading (stand-and-read protocol) and the typical trial's learned sensor model after its best affine map."
+        }
+        "fig8" => {
+            "Fig. 8. Errors of the learned models every 5 s, mean and std over the trials, with the best possible polynomial of each model's degree (dashed)."
+        }
+        _ => "",
+    }
 }

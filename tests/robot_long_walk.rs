@@ -7,7 +7,7 @@
 //! is a test of the robot, not of a learner, and no learner is involved.
 
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig};
-use testbed::behaviour::{BehaviourConfig, Phase, TrainingBehaviour};
+use testbed::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
 use testbed::seeds::{self, Stream};
 
 const K_PX_M: f64 = 38.4; // an ideal 200 mm band through a 192 px lens, px * m

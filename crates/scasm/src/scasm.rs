@@ -46,6 +46,9 @@ pub struct Scasm {
     action_fit: ActionFit,
     sensor_model: Option<Polynomial>,
     action_model: Option<Polynomial>,
+    /// The intercept `x(0)` of the action fit (Eq. 5).
+    #[cfg_attr(feature = "serde", serde(default))]
+    action_start: Option<f64>,
 }
 
 impl Default for Scasm {
@@ -84,6 +87,7 @@ impl Scasm {
             ),
             sensor_model: None,
             action_model: None,
+            action_start: None,
         }
     }
 
@@ -100,6 +104,12 @@ impl Scasm {
     /// The learner's clock: the end of the last command interval, s.
     pub fn clock_s(&self) -> f64 {
         self.clock_s
+    }
+
+    /// The location at time 0 that the action fit (Eq. 5) found beside A: the
+    /// learned path is `x(t) = x(0) + integral of A(C(s)) ds`, in S's units.
+    pub fn action_start(&self) -> Option<f64> {
+        self.action_start
     }
 
     /// Readings the sensor model has learned from.
@@ -192,7 +202,9 @@ impl Scasm {
 
     fn learn_action(&mut self, x_s: f64) {
         self.action_fit.add(x_s);
-        self.action_model = self.action_fit.model().map(|(a, _x0)| a);
+        let fit = self.action_fit.model();
+        self.action_model = fit.map(|(a, _)| a);
+        self.action_start = fit.map(|(_, x0)| x0);
     }
 
     fn learn_sensor(&mut self, obs_px: f64) {

@@ -1,6 +1,7 @@
-//! The paper's training behaviour (section II): walk towards the beacon and away
-//! from it, with random commands held for a while, turning round when the beacon
-//! looks too big or too small. It sees only readings, as the robot would.
+//! What the robot does: the paper's training behaviour (section II), walking
+//! towards the beacon and away from it with random commands held for a while and
+//! turning round when the beacon looks too big or too small; and the constant
+//! walk of section IV. Behaviours see only readings, as the robot would.
 
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
@@ -25,6 +26,16 @@ pub enum Phase {
     Forwards,
     /// Away from the beacon (negative commands).
     Backwards,
+}
+
+/// Chooses the robot's walk command from its readings.
+pub trait Behaviour: std::fmt::Debug + Send {
+    /// The command in force at `t_s`.
+    fn command(&mut self, t_s: f64) -> f64;
+    /// Takes a reading (if any) at `t_s`.
+    fn observe(&mut self, t_s: f64, obs_px: Option<f64>);
+    /// Which way the robot is going.
+    fn phase(&self) -> Phase;
 }
 
 /// The behaviour's state: its phase, the command in force and until when.
@@ -59,10 +70,12 @@ impl TrainingBehaviour {
         };
         self.hold_until_s = t_s + self.config.hold_s;
     }
+}
 
-    /// Takes a reading (if any) at `t_s`: turns round if the beacon looks too big
-    /// or too small, which starts a new command at once.
-    pub fn observe(&mut self, t_s: f64, obs_px: Option<f64>) {
+impl Behaviour for TrainingBehaviour {
+    /// Turns round if the beacon looks too big or too small, which starts a new
+    /// command at once.
+    fn observe(&mut self, t_s: f64, obs_px: Option<f64>) {
         let Some(obs) = obs_px else { return };
         let turn = match self.phase {
             Phase::Forwards if obs >= self.config.near_obs_px => Some(Phase::Backwards),
@@ -75,16 +88,46 @@ impl TrainingBehaviour {
         }
     }
 
-    /// The command in force at `t_s` (a new one is drawn when the old one's time is up).
-    pub fn command(&mut self, t_s: f64) -> f64 {
+    /// A new command is drawn when the old one's time is up.
+    fn command(&mut self, t_s: f64) -> f64 {
         if t_s >= self.hold_until_s {
             self.pick(t_s);
         }
         self.command
     }
 
-    /// The current phase.
-    pub fn phase(&self) -> Phase {
+    fn phase(&self) -> Phase {
         self.phase
+    }
+}
+
+/// One constant command towards the beacon until it looks as big as at the
+/// nearest test distance, then standing (command 0, phase `Backwards`): the walk
+/// of the paper's Fig. 2a.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ConstantWalk {
+    /// The command walked with.
+    pub command: f64,
+    /// Stop when a reading is at least this big, px.
+    pub near_obs_px: f64,
+    /// Whether the walk has arrived.
+    pub arrived: bool,
+}
+
+impl Behaviour for ConstantWalk {
+    fn command(&mut self, _t_s: f64) -> f64 {
+        if self.arrived { 0.0 } else { self.command }
+    }
+
+    fn observe(&mut self, _t_s: f64, obs_px: Option<f64>) {
+        self.arrived |= obs_px.is_some_and(|o| o >= self.near_obs_px);
+    }
+
+    fn phase(&self) -> Phase {
+        if self.arrived {
+            Phase::Backwards
+        } else {
+            Phase::Forwards
+        }
     }
 }

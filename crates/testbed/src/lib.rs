@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod demos;
 pub mod experiment;
 pub mod measure;
 pub mod metrics;

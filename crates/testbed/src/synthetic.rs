@@ -6,7 +6,7 @@
 use rand_distr::{Distribution, Normal};
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
-use crate::behaviour::{BehaviourConfig, Phase, TrainingBehaviour};
+use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
 use crate::metrics::{self, AffineError, ScaledError};
 use crate::seeds::{self, Stream};
 

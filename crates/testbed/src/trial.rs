@@ -7,7 +7,7 @@ use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
 use rand::Rng;
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
-use crate::behaviour::{BehaviourConfig, Phase, TrainingBehaviour};
+use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
 use crate::metrics;
 use crate::seeds::{self, Stream};
 
@@ -104,26 +104,37 @@ pub struct TraceRow {
 pub struct TrialRunner {
     config: TrialConfig,
     sim: QuadrupedSim,
-    behaviour: TrainingBehaviour,
+    behaviour: Box<dyn Behaviour>,
     frame: u64,
     fell: bool,
 }
 
 impl TrialRunner {
-    /// Builds the world for a trial.
+    /// Builds the world for a trial of the paper's training behaviour.
     pub fn new(
         description: &RobotDescription,
         sim_config: SimConfig,
         config: TrialConfig,
     ) -> Result<Self, TrialError> {
-        let mut sim_config = sim_config;
-        sim_config.camera.noise_seed = seeds::rng(config.seed, Stream::SensorNoise).next_u64();
-        let sim = QuadrupedSim::new(description, sim_config)?;
         let behaviour = TrainingBehaviour::new(
             config.behaviour,
             seeds::rng(config.seed, Stream::Behaviour),
             Phase::Forwards,
         );
+        Self::with_behaviour(description, sim_config, config, Box::new(behaviour))
+    }
+
+    /// Builds the world for a trial of another behaviour (`config.behaviour` is
+    /// then unused).
+    pub fn with_behaviour(
+        description: &RobotDescription,
+        sim_config: SimConfig,
+        config: TrialConfig,
+        behaviour: Box<dyn Behaviour>,
+    ) -> Result<Self, TrialError> {
+        let mut sim_config = sim_config;
+        sim_config.camera.noise_seed = seeds::rng(config.seed, Stream::SensorNoise).next_u64();
+        let sim = QuadrupedSim::new(description, sim_config)?;
         Ok(Self {
             config,
             sim,
@@ -131,6 +142,11 @@ impl TrialRunner {
             frame: 0,
             fell: false,
         })
+    }
+
+    /// The behaviour driving the robot.
+    pub fn behaviour(&self) -> &dyn Behaviour {
+        self.behaviour.as_ref()
     }
 
     /// Frames in the whole trial.

@@ -1,0 +1,43 @@
+//! # report: pictures and pages of results
+//!
+//! Draws what people would rather look at than read: the paper's figures from a
+//! training run, an HTML page of them beside the results table, and heatmaps of
+//! parameter sweeps. PNG and SVG both, with a bundled font (DejaVu Sans), so
+//! nothing depends on the fonts of the machine.
+#![warn(missing_docs)]
+
+pub mod heatmap;
+pub mod page;
+pub mod paper;
+pub mod plot;
+
+use std::path::Path;
+
+/// A figure or page that could not be made.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ReportError {
+    /// Drawing failed.
+    #[error("drawing: {0}")]
+    Draw(String),
+    /// A file could not be written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+}
+
+/// Writes `bytes` to `path` whole or not at all (a temporary file, then renamed).
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ReportError> {
+    let io = |source| ReportError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    std::fs::write(&tmp, bytes).map_err(io)?;
+    std::fs::rename(&tmp, path).map_err(io)
+}

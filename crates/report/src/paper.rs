@@ -1,0 +1,380 @@
+//! The paper's figures 2a, 2b, 3, 6, 7a, 7b and 8, drawn from a training run's
+//! own data: its demonstrations, its trials and the measured models.
+
+use std::path::Path;
+
+use plotters::chart::SeriesLabelPosition;
+use scasm::Polynomial;
+use testbed::demos::{CONSTANT_COMMAND, DemoRun, Demos};
+use testbed::experiment::MeasuredModels;
+use testbed::metrics;
+use testbed::trial::{TraceRow, TrialOutcome};
+
+use crate::ReportError;
+use crate::plot::{Chart, Mark, Series, colours};
+
+/// What the figures are drawn from.
+#[derive(Debug, Clone, Copy)]
+pub struct RunData<'a> {
+    /// The measured (reference) models.
+    pub measured: &'a MeasuredModels,
+    /// The finished trials.
+    pub trials: &'a [TrialOutcome],
+    /// The section IV and V demonstrations.
+    pub demos: &'a Demos,
+    /// Best possible errors: action polynomial (mm/s), sensor polynomial (mm).
+    pub best: (f64, f64),
+}
+
+/// One figure: its file stem and what it shows.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figure {
+    /// The file name without extension (`fig2a`, ...).
+    pub stem: &'static str,
+    /// The chart.
+    pub chart: Chart,
+}
+
+/// The index of the typical trial: the one with the median final sensor error.
+pub fn typical_trial(trials: &[TrialOutcome]) -> Option<usize> {
+    let mut order: Vec<(f64, usize)> = trials
+        .iter()
+        .enumerate()
+        .map(|(i, t)| (t.last.sensor_rmse_mm.unwrap_or(f64::INFINITY), i))
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    order.get(order.len().saturating_sub(1) / 2).map(|p| p.1)
+}
+
+/// Every figure the data allow (figures of a model never learned are left out).
+pub fn figures(data: &RunData) -> Vec<Figure> {
+    let typical = typical_trial(data.trials).map(|i| &data.trials[i]);
+    [
+        Some(fig2a(&data.demos.constant_walk)),
+        Some(fig2b(&data.demos.sensor_from_a0)),
+        fig3(&data.demos.action_from_rough_sensor),
+        typical.map(fig6),
+        typical.and_then(|t| fig7a(t, data.measured)),
+        typical.and_then(|t| fig7b(t, data.measured)),
+        Some(fig8(data.trials, data.best)),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// Writes every figure as `<stem>.png` and `<stem>.svg` in `dir`; returns them.
+pub fn write_figures(dir: &Path, data: &RunData) -> Result<Vec<Figure>, ReportError> {
+    let figs = figures(data);
+    for f in &figs {
+        f.chart.save(&dir.join(f.stem))?;
+    }
+    Ok(figs)
+}
+
+/// `n` points of `f` evenly over `[lo, hi]`.
+fn curve(lo: f64, hi: f64, n: usize, f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
+    (0..n)
+        .map(|i| {
+            let x = lo + (hi - lo) * i as f64 / (n - 1) as f64;
+            (x, f(x))
+        })
+        .collect()
+}
+
+fn readings(trace: &[TraceRow]) -> impl Iterator<Item = (&TraceRow, f64)> {
+    trace.iter().filter_map(|r| r.obs_px.map(|o| (r, o)))
+}
+
+fn obs_span(trace: &[TraceRow]) -> (f64, f64) {
+    readings(trace).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, o)| {
+        (a.min(o), b.max(o))
+    })
+}
+
+fn fig2a(walk: &DemoRun) -> Figure {
+    let mut series = vec![Series::new(
+        "observations",
+        Mark::Plus,
+        colours::BLUE,
+        readings(&walk.trace).map(|(r, o)| (o, r.t_s)).collect(),
+    )];
+    if let Some(s) = walk.sensor {
+        let (lo, hi) = obs_span(&walk.trace);
+        series.push(Series::new(
+            "best-fit cubic",
+            Mark::Dashed,
+            colours::RED,
+            curve(lo, hi, 100, |o| s.eval(o)),
+        ));
+    }
+    Figure {
+        stem: "fig2a",
+        chart: Chart {
+            title: format!("Fig. 2a: walking forwards at constant command {CONSTANT_COMMAND}"),
+            x_label: "beacon height (px)".into(),
+            y_label: "time (s)".into(),
+            series,
+            legend: SeriesLabelPosition::UpperLeft,
+        },
+    }
+}
+
+fn fig2b(run: &DemoRun) -> Figure {
+    let points = |forwards: bool| {
+        readings(&run.trace)
+            .filter(|(r, _)| (r.command >= 0.0) == forwards)
+            .filter_map(|(r, o)| r.x_a.map(|x| (o, x)))
+            .collect()
+    };
+    let mut series = vec![
+        Series::new("walking forwards", Mark::Plus, colours::BLUE, points(true)),
+        Series::new(
+            "walking backwards",
+            Mark::Cross,
+            colours::ORANGE,
+            points(false),
+        ),
+    ];
+    if let Some(s) = run.sensor {
+        let (lo, hi) = obs_span(&run.trace);
+        series.push(Series::new(
+            "best-fit cubic (to all data)",
+            Mark::Line,
+            colours::BLACK,
+            curve(lo, hi, 100, |o| s.eval(o)),
+        ));
+    }
+    Figure {
+        stem: "fig2b",
+        chart: Chart {
+            title: "Fig. 2b: S learned from the identity action model A0, one cycle".into(),
+            x_label: "beacon height (px)".into(),
+            y_label: "x_a(t) by A0 (command x s)".into(),
+            series,
+            legend: SeriesLabelPosition::LowerRight,
+        },
+    }
+}
+
+/// The learned path `x(0) + sum A(c) dt` at each frame of `trace`.
+fn dead_reckoned(trace: &[TraceRow], a: &Polynomial, x0: f64) -> Vec<(f64, f64)> {
+    let mut t_prev = 0.0;
+    let mut x = x0;
+    let mut path = vec![(0.0, x0)];
+    for r in trace {
+        x += a.eval(r.command) * (r.t_s - t_prev);
+        t_prev = r.t_s;
+        path.push((r.t_s, x));
+    }
+    path
+}
+
+fn fig3(run: &DemoRun) -> Option<Figure> {
+    let (a, x0) = run.action.zip(run.action_start)?;
+    let observations = run
+        .trace
+        .iter()
+        .filter_map(|r| r.obs_px.and(r.x_s).map(|x| (r.t_s, x)))
+        .collect();
+    Some(Figure {
+        stem: "fig3",
+        chart: Chart {
+            title: "Fig. 3: A learned from a rough S, one cycle".into(),
+            x_label: "time (s)".into(),
+            y_label: "x_s(t) by the rough S (s of the constant walk)".into(),
+            series: vec![
+                Series::new("observations", Mark::Plus, colours::BLUE, observations),
+                Series::new(
+                    "learned action model",
+                    Mark::Line,
+                    colours::RED,
+                    dead_reckoned(&run.trace, &a, x0),
+                ),
+            ],
+            legend: SeriesLabelPosition::UpperRight,
+        },
+    })
+}
+
+fn fig6(trial: &TrialOutcome) -> Figure {
+    let x_s = trial
+        .trace
+        .iter()
+        .filter_map(|r| r.obs_px.and(r.x_s).map(|x| (r.t_s, x)))
+        .collect();
+    let x_a = trial
+        .trace
+        .iter()
+        .filter_map(|r| r.x_a.map(|x| (r.t_s, x)))
+        .collect();
+    Figure {
+        stem: "fig6",
+        chart: Chart {
+            title: format!(
+                "Fig. 6: x_a(t) and x_s(t) while learning both (seed {})",
+                trial.seed
+            ),
+            x_label: "time (s)".into(),
+            y_label: "x(t) (learned units)".into(),
+            series: vec![
+                Series::new("x_s(t) = S(obs)", Mark::Plus, colours::BLUE, x_s),
+                Series::new("x_a(t), dead reckoning", Mark::Line, colours::RED, x_a),
+            ],
+            legend: SeriesLabelPosition::LowerRight,
+        },
+    }
+}
+
+fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
+    let a = trial.action_model?;
+    let reference: Vec<(f64, f64)> = measured.action.iter().map(|m| (m.0, m.1)).collect();
+    let k = metrics::action_error(&a, &reference).scale;
+    let (lo, hi) = span(measured.action.iter().map(|m| m.0));
+    Some(Figure {
+        stem: "fig7a",
+        chart: Chart {
+            title: format!("Fig. 7a: action model (seed {}), best scale", trial.seed),
+            x_label: "action command".into(),
+            y_label: "velocity towards the beacon (mm/s)".into(),
+            series: vec![
+                Series::new(
+                    "measured (stopwatch, +- 1 std)",
+                    Mark::ErrorBars(measured.action.iter().map(|m| m.2).collect()),
+                    colours::BLUE,
+                    reference,
+                ),
+                Series::new(
+                    "learned",
+                    Mark::Line,
+                    colours::RED,
+                    curve(lo, hi, 121, |c| k * a.eval(c)),
+                ),
+            ],
+            legend: SeriesLabelPosition::UpperLeft,
+        },
+    })
+}
+
+fn fig7b(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
+    let s = trial.sensor_model?;
+    let reference: Vec<(f64, f64)> = measured.sensor.iter().map(|m| (m.0, m.1)).collect();
+    let fit = metrics::sensor_error(&s, &reference);
+    let (lo, hi) = span(measured.sensor.iter().map(|m| m.1));
+    Some(Figure {
+        stem: "fig7b",
+        chart: Chart {
+            title: format!(
+                "Fig. 7b: sensor model (seed {}), best affine map",
+                trial.seed
+            ),
+            x_label: "beacon height (px)".into(),
+            y_label: "distance to the beacon (mm)".into(),
+            series: vec![
+                Series::new(
+                    "measured (tape measure)",
+                    Mark::Dot,
+                    colours::BLUE,
+                    measured.sensor.iter().map(|m| (m.1, m.0)).collect(),
+                ),
+                Series::new(
+                    "learned",
+                    Mark::Line,
+                    colours::RED,
+                    curve(lo, hi, 100, |o| fit.offset + fit.scale * s.eval(o)),
+                ),
+            ],
+            legend: SeriesLabelPosition::UpperRight,
+        },
+    })
+}
+
+fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    })
+}
+
+/// Mean and standard deviation over trials of one error at each judging time
+/// (trials without that model at that time are left out).
+fn over_trials(
+    trials: &[TrialOutcome],
+    get: impl Fn(&testbed::trial::Judgement) -> Option<f64>,
+) -> Vec<(f64, f64, f64)> {
+    let n = trials.iter().map(|t| t.over_time.len()).max().unwrap_or(0);
+    (0..n)
+        .filter_map(|i| {
+            let values: Vec<(f64, f64)> = trials
+                .iter()
+                .filter_map(|t| t.over_time.get(i))
+                .filter_map(|j| get(j).map(|v| (j.t_s, v)))
+                .filter(|v| v.1.is_finite())
+                .collect();
+            let m = values.len() as f64;
+            (m > 0.0).then(|| {
+                let mean = values.iter().map(|v| v.1).sum::<f64>() / m;
+                let var = values.iter().map(|v| (v.1 - mean).powi(2)).sum::<f64>() / m;
+                (values[0].0, mean, var.sqrt())
+            })
+        })
+        .collect()
+}
+
+fn fig8(trials: &[TrialOutcome], best: (f64, f64)) -> Figure {
+    let action = over_trials(trials, |j| j.action_rmse_mm_s);
+    let sensor = over_trials(trials, |j| j.sensor_rmse_mm);
+    let t_end = trials
+        .iter()
+        .flat_map(|t| t.over_time.last())
+        .map(|j| j.t_s)
+        .fold(0.0, f64::max);
+    let band = |v: &[(f64, f64, f64)], colour| {
+        Series::new(
+            "",
+            Mark::Band(v.iter().map(|p| p.1 + p.2).collect()),
+            colour,
+            v.iter().map(|p| (p.0, (p.1 - p.2).max(0.0))).collect(),
+        )
+    };
+    let mean = |v: &[(f64, f64, f64)]| v.iter().map(|p| (p.0, p.1)).collect();
+    Figure {
+        stem: "fig8",
+        chart: Chart {
+            title: format!(
+                "Fig. 8: error over time, mean +- std of {} trials",
+                trials.len()
+            ),
+            x_label: "time (s)".into(),
+            y_label: "error (action mm/s, sensor mm)".into(),
+            series: vec![
+                band(&action, colours::BLUE),
+                band(&sensor, colours::RED),
+                Series::new(
+                    "learned action model (mm/s)",
+                    Mark::Line,
+                    colours::BLUE,
+                    mean(&action),
+                ),
+                Series::new(
+                    "learned sensor model (mm)",
+                    Mark::Line,
+                    colours::RED,
+                    mean(&sensor),
+                ),
+                Series::new(
+                    "best quartic action model",
+                    Mark::Dashed,
+                    colours::BLUE,
+                    vec![(0.0, best.0), (t_end, best.0)],
+                ),
+                Series::new(
+                    "best cubic sensor model",
+                    Mark::Dashed,
+                    colours::RED,
+                    vec![(0.0, best.1), (t_end, best.1)],
+                ),
+            ],
+            legend: SeriesLabelPosition::UpperRight,
+        },
+    }
+}
