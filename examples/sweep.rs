@@ -8,7 +8,7 @@
 //! combines shards' results.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use anyhow::{Context, Result, bail, ensure};
@@ -111,9 +111,44 @@ fn report(results: &Results, velocity_range: f64) {
         "  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
         g.mean.action_rmse_mm_s, g.mean.sensor_rmse_mm, g.mean.consistency
     );
-    println!(
-        "paper's constants, the first values it tried: learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20"
+    let paper = [
+        ("learner.gamma", 0.999),
+        ("learner.beta", 1.0 / 30.0),
+        ("learner.t_start", 20.0),
+    ];
+    let is_paper = |g: &CombinationSummary| {
+        g.settings.iter().all(|(k, v)| {
+            paper.iter().find(|p| p.0 == k).is_none_or(|p| {
+                v.parse::<f64>()
+                    .is_ok_and(|x| (x - p.1).abs() <= 1e-3 * p.1)
+            })
+        })
+    };
+    print!(
+        "paper's constants, the first values it tried (learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20)"
     );
+    match results
+        .summary()
+        .into_iter()
+        .find(|g| is_paper(g) && g.runs_ok > 0)
+    {
+        Some(g) => println!(
+            ":\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
+            g.mean.action_rmse_mm_s, g.mean.sensor_rmse_mm, g.mean.consistency
+        ),
+        None => println!(": not in this sweep"),
+    }
+}
+
+/// Writes sweep.csv, sweep_summary.csv and the heatmaps.
+fn write_outputs(results: &Results, dir: &Path) -> Result<()> {
+    results.write(dir)?;
+    results.write_summary(dir)?;
+    let maps = report::heatmap::write_sweep_heatmaps(dir, results.keys(), &results.summary())?;
+    for m in maps {
+        println!("heatmap {}.png (and .svg)", m.display());
+    }
+    Ok(())
 }
 
 fn main() -> Result<()> {
@@ -132,8 +167,7 @@ fn main() -> Result<()> {
             }
         }
         let merged = merged.context("nothing to merge")?;
-        merged.write(&args.out)?;
-        merged.write_summary(&args.out)?;
+        write_outputs(&merged, &args.out)?;
         println!(
             "merged {} runs into {}",
             merged.rows().count(),
@@ -233,8 +267,7 @@ fn main() -> Result<()> {
         bail!("writing results: {e}");
     }
     results = done;
-    results.write(&args.out)?;
-    results.write_summary(&args.out)?;
+    write_outputs(&results, &args.out)?;
     let velocity_range = references
         .values()
         .next()

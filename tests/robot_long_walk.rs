@@ -30,6 +30,7 @@ fn walk(seconds: f64, seed: u64) -> Walk {
             hold_s: 3.0,
             near_obs_px: K_PX_M / 1.2,
             far_obs_px: K_PX_M / 3.6,
+            turn_median_of: testbed::behaviour::TURN_MEDIAN_OF,
         },
         seeds::rng(seed, Stream::Behaviour),
         Phase::Forwards,

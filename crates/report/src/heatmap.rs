@@ -63,7 +63,11 @@ impl Grid {
             .margin(14)
             .x_label_area_size(48)
             .y_label_area_size(64)
-            .build_cartesian_2d((0..nx).into_segmented(), (0..ny).into_segmented())?;
+            // plotters' integer ranges include their end: 0..n-1 gives n segments.
+            .build_cartesian_2d(
+                (0..nx.saturating_sub(1)).into_segmented(),
+                (0..ny.saturating_sub(1)).into_segmented(),
+            )?;
         let label = |values: &[String], v: &SegmentValue<usize>| match v {
             SegmentValue::CenterOf(i) => values.get(*i).cloned().unwrap_or_default(),
             _ => String::new(),
@@ -273,4 +277,72 @@ pub fn write_sweep_heatmaps(
         stems.push(stem);
     }
     Ok(stems)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use testbed::experiment::Figures;
+
+    fn summary() -> (Vec<String>, Vec<CombinationSummary>) {
+        let keys: Vec<String> = ["learner.gamma", "learner.t_start", "learner.beta"]
+            .map(String::from)
+            .to_vec();
+        let mut out = Vec::new();
+        for g in ["0.999", "0.99"] {
+            for t in ["20"] {
+                for b in ["0.1", "0.01", "0.0333"] {
+                    let mut mean = Figures::filled(1.0);
+                    mean.action_rmse_mm_s = g.parse::<f64>().unwrap_or(0.0) * 100.0;
+                    mean.sensor_rmse_mm = b.parse::<f64>().unwrap_or(0.0) * 1000.0;
+                    out.push(CombinationSummary {
+                        settings: vec![
+                            ("learner.gamma".into(), g.into()),
+                            ("learner.t_start".into(), t.into()),
+                            ("learner.beta".into(), b.into()),
+                        ],
+                        runs_ok: usize::from(!(g == "0.99" && b == "0.1")),
+                        mean,
+                        std: Figures::filled(0.0),
+                    });
+                }
+            }
+        }
+        (keys, out)
+    }
+
+    #[test]
+    fn gamma_goes_up_beta_across_in_numeric_order() {
+        let (keys, s) = summary();
+        assert_eq!(heatmap_axes(&keys, &s), Some((2, 0)));
+        assert_eq!(values_of(&s, 2), ["0.01", "0.0333", "0.1"]);
+        assert_eq!(values_of(&s, 0), ["0.99", "0.999"]);
+        // Without gamma and beta, the first two settings that vary.
+        let other: Vec<String> = ["a", "b", "c"].map(String::from).to_vec();
+        assert_eq!(heatmap_axes(&other, &s), Some((0, 2)));
+        assert_eq!(heatmap_axes(&keys[..1], &s[..1]), None);
+    }
+
+    #[test]
+    fn one_picture_per_other_setting_with_empty_cells_marked() {
+        let (keys, s) = summary();
+        let dir = std::env::temp_dir().join(format!("heatmap-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let stems = write_sweep_heatmaps(&dir, &keys, &s).expect("drawn");
+        assert_eq!(stems, [dir.join("heatmap-t_start-20")]);
+        let svg = std::fs::read_to_string(dir.join("heatmap-t_start-20.svg")).expect("svg");
+        // The run-less cell says so; the others show their values.
+        assert!(svg.contains("no run"));
+        assert!(svg.contains("99.9") && svg.contains("33.3"));
+        assert!(dir.join("heatmap-t_start-20.png").exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn the_ramp_runs_from_bright_to_dark() {
+        assert!(luminance(ramp(0.0)) > 0.7);
+        assert!(luminance(ramp(1.0)) < 0.2);
+        assert_eq!(ramp(-1.0), ramp(0.0));
+        assert_eq!(ramp(2.0), ramp(1.0));
+    }
 }

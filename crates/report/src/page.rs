@@ -92,3 +92,26 @@ impl Page {
         write_atomic(path, self.html().as_bytes())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_is_escaped_and_figures_link_their_svg() {
+        let page = Page {
+            title: "a < b & c".into(),
+            paragraphs: vec!["\"quoted\"".into()],
+            header: vec!["k".into(), "v".into()],
+            rows: vec![vec!["<x>".into(), "1".into()]],
+            figures: vec![("fig8".into(), "errors > 0".into())],
+        };
+        let h = page.html();
+        assert!(h.contains("<title>a &lt; b &amp; c</title>"));
+        assert!(h.contains("<p>&quot;quoted&quot;</p>"));
+        assert!(h.contains("<td>&lt;x&gt;</td>"));
+        assert!(h.contains("<a href=\"fig8.svg\"><img src=\"fig8.png\""));
+        assert!(h.contains("errors &gt; 0"));
+        assert!(!h.contains("<x>"));
+    }
+}

@@ -283,3 +283,71 @@ pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, Repo
     }
     Ok(bytes)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn render(chart: &Chart) -> Vec<u8> {
+        register_font().expect("font");
+        let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
+            chart.draw(&root).expect("drawn");
+            root.present().expect("presented");
+        }
+        rgb
+    }
+
+    fn chart(title: &str, points: Vec<(f64, f64)>) -> Chart {
+        Chart {
+            title: title.into(),
+            x_label: "x (m)".into(),
+            y_label: "y (s)".into(),
+            series: vec![Series::new("data", Mark::Line, colours::BLUE, points)],
+            legend: SeriesLabelPosition::UpperRight,
+        }
+    }
+
+    #[test]
+    fn text_is_drawn_with_the_bundled_font() {
+        let line = vec![(0.0, 0.0), (1.0, 1.0)];
+        let plain = render(&chart("", line.clone()));
+        let titled = render(&chart("Fig. 0: a title", line));
+        // The caption's glyphs darken pixels in the band above the plot.
+        let band = |rgb: &[u8]| {
+            rgb[..(SIZE.0 * 40 * 3) as usize]
+                .iter()
+                .filter(|&&v| v < 128)
+                .count()
+        };
+        assert_eq!(band(&plain), 0);
+        assert!(band(&titled) > 100, "{} dark pixels", band(&titled));
+    }
+
+    #[test]
+    fn non_finite_points_are_skipped_not_fatal() {
+        let rgb = render(&chart(
+            "t",
+            vec![
+                (0.0, f64::NAN),
+                (1.0, 2.0),
+                (f64::INFINITY, 3.0),
+                (2.0, 1.0),
+            ],
+        ));
+        assert!(rgb.iter().any(|&v| v < 128));
+        let empty = render(&chart("t", vec![]));
+        assert!(empty.iter().any(|&v| v < 128));
+    }
+
+    #[test]
+    fn ranges_are_padded_and_never_empty() {
+        assert_eq!(padded(&[]), (0.0, 1.0));
+        assert_eq!(padded(&[f64::NAN]), (0.0, 1.0));
+        let (lo, hi) = padded(&[2.0, 2.0]);
+        assert!(lo < 2.0 && hi > 2.0);
+        let (lo, hi) = padded(&[0.0, 10.0]);
+        assert!((lo + 0.4).abs() < 1e-12 && (hi - 10.4).abs() < 1e-12);
+    }
+}

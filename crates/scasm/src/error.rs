@@ -30,6 +30,14 @@ pub enum ConfigError {
         /// The largest degree supported.
         max: usize,
     },
+    /// The sensor fit's reading window is out of range.
+    #[error("learner.sensor_window must be in 1..={max}, got {window}")]
+    SensorWindow {
+        /// The value given.
+        window: usize,
+        /// The largest window supported.
+        max: usize,
+    },
     /// The action model's degree is out of range.
     #[error("learner.action_degree must be in 1..={max}, got {degree}")]
     ActionDegree {

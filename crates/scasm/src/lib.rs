@@ -41,7 +41,7 @@ mod wls;
 /// action model of degree up to one less (its regressors are `V_0..V_d`).
 pub const MAX_REGRESSORS: usize = 8;
 
-pub use config::{ScasmConfig, ScasmParams};
+pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
 pub use polynomial::{MAX_COEFFS, Polynomial};

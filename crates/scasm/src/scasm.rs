@@ -49,6 +49,18 @@ pub struct Scasm {
     /// The intercept `x(0)` of the action fit (Eq. 5).
     #[cfg_attr(feature = "serde", serde(default))]
     action_start: Option<f64>,
+    /// Readings (and their `x_a`) gathered for the next point of the sensor fit.
+    #[cfg_attr(feature = "serde", serde(default))]
+    window: ReadingWindow,
+}
+
+/// Sums of the readings, and of `x_a` at them, for one point of the sensor fit.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct ReadingWindow {
+    obs_sum: f64,
+    x_a_sum: f64,
+    count: usize,
 }
 
 impl Default for Scasm {
@@ -79,7 +91,10 @@ impl Scasm {
             clock_s: 0.0,
             x_a: 0.0,
             x_s: None,
-            sensor_fit: PolynomialFit::new(params.sensor_degree(), params.gamma()),
+            sensor_fit: PolynomialFit::new(
+                params.sensor_degree(),
+                libm::pow(params.gamma(), params.sensor_window() as f64),
+            ),
             action_fit: ActionFit::new(
                 params.action_degree(),
                 params.gamma(),
@@ -88,6 +103,7 @@ impl Scasm {
             sensor_model: None,
             action_model: None,
             action_start: None,
+            window: ReadingWindow::default(),
         }
     }
 
@@ -112,7 +128,8 @@ impl Scasm {
         self.action_start
     }
 
-    /// Readings the sensor model has learned from.
+    /// Points the sensor fit has learned from (each the mean of `sensor_window`
+    /// readings).
     pub fn sensor_points(&self) -> u64 {
         self.sensor_fit.points()
     }
@@ -207,9 +224,20 @@ impl Scasm {
         self.action_start = fit.map(|(_, x0)| x0);
     }
 
+    /// Adds the reading and `x_a` to the window; a full window becomes one point
+    /// of the sensor fit, at the means of both.
     fn learn_sensor(&mut self, obs_px: f64) {
-        if self.x_a.is_finite() {
-            self.sensor_fit.add(obs_px, self.x_a);
+        if !self.x_a.is_finite() {
+            return;
+        }
+        let w = &mut self.window;
+        w.obs_sum += obs_px;
+        w.x_a_sum += self.x_a;
+        w.count += 1;
+        if w.count >= self.params.sensor_window() {
+            let n = w.count as f64;
+            self.sensor_fit.add(w.obs_sum / n, w.x_a_sum / n);
+            self.window = ReadingWindow::default();
             self.sensor_model = self.sensor_fit.polynomial();
         }
     }

@@ -83,3 +83,53 @@ fn sensor_from_a_constant_action_is_an_affine_image_of_time() {
         assert!(err < 0.15, "at {d} mm: {err} s");
     }
 }
+
+/// Error (mm) of `S(obs) + 2400` against the distance over the test range.
+fn distance_rmse(s: &Polynomial) -> f64 {
+    let ds: Vec<f64> = (0..=12).map(|i| 1200.0 + 200.0 * f64::from(i)).collect();
+    let sq: f64 = ds
+        .iter()
+        .map(|&d| (s.eval(76_800.0 / d) + 2400.0 - d).powi(2))
+        .sum();
+    (sq / ds.len() as f64).sqrt()
+}
+
+#[test]
+fn averaging_readings_shrinks_the_errors_in_variables_bias() {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+    // Readings with 2 px of Gaussian noise: regressing location on them flattens
+    // the fitted curve where a pixel spans most distance (far away).
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let noise = Normal::new(0.0, 2.0).expect("normal");
+    let events: Vec<Event> = common::events(0, 12_000)
+        .into_iter()
+        .map(|e| match e {
+            Event::Reading { t_s, obs_px } => Event::Reading {
+                t_s,
+                obs_px: obs_px + noise.sample(&mut rng),
+            },
+            other => other,
+        })
+        .collect();
+    let error_with = |sensor_window| {
+        let config = ScasmConfig {
+            sensor_window,
+            gamma: 1.0,
+            ..Default::default()
+        };
+        let mut l = Scasm::new(
+            config.validate().expect("valid"),
+            Mode::SensorFromAction(true_action()),
+        )
+        .expect("mode");
+        common::feed(&mut l, &events);
+        distance_rmse(&l.sensor_model().expect("learned"))
+    };
+    let (one, five, twenty) = (error_with(1), error_with(5), error_with(20));
+    assert!(five < 0.7 * one, "window 5: {five:.1} mm vs 1: {one:.1} mm");
+    assert!(
+        twenty < five,
+        "window 20: {twenty:.1} mm vs 5: {five:.1} mm"
+    );
+}

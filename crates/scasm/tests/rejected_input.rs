@@ -148,7 +148,7 @@ fn refused_events_change_nothing() {
 
 #[test]
 fn out_of_range_configuration_is_refused_by_name() {
-    let cases: [(ScasmConfig, &str); 11] = [
+    let cases: [(ScasmConfig, &str); 13] = [
         (
             ScasmConfig {
                 gamma: 0.0,
@@ -225,6 +225,20 @@ fn out_of_range_configuration_is_refused_by_name() {
                 ..Default::default()
             },
             "learner.command_scale",
+        ),
+        (
+            ScasmConfig {
+                sensor_window: 0,
+                ..Default::default()
+            },
+            "learner.sensor_window",
+        ),
+        (
+            ScasmConfig {
+                sensor_window: scasm::MAX_SENSOR_WINDOW + 1,
+                ..Default::default()
+            },
+            "learner.sensor_window",
         ),
     ];
     for (config, key) in cases {

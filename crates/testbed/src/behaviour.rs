@@ -17,7 +17,13 @@ pub struct BehaviourConfig {
     pub near_obs_px: f64,
     /// Turn to forwards when a reading is at most this small (too far), px.
     pub far_obs_px: f64,
+    /// Turn on the median of this many latest readings (1: on each reading), so
+    /// that one noisy reading does not turn the robot round early.
+    pub turn_median_of: usize,
 }
+
+/// Readings in the turn-round median by default: a quarter second at 20 Hz.
+pub const TURN_MEDIAN_OF: usize = 5;
 
 /// Which way the robot is going.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -46,6 +52,8 @@ pub struct TrainingBehaviour {
     phase: Phase,
     command: f64,
     hold_until_s: f64,
+    /// The latest readings since the last turn, oldest first.
+    recent: std::collections::VecDeque<f64>,
 }
 
 impl TrainingBehaviour {
@@ -57,6 +65,7 @@ impl TrainingBehaviour {
             phase,
             command: 0.0,
             hold_until_s: 0.0,
+            recent: std::collections::VecDeque::new(),
         };
         b.pick(0.0);
         b
@@ -77,6 +86,17 @@ impl Behaviour for TrainingBehaviour {
     /// command at once.
     fn observe(&mut self, t_s: f64, obs_px: Option<f64>) {
         let Some(obs) = obs_px else { return };
+        let n = self.config.turn_median_of.max(1);
+        self.recent.push_back(obs);
+        while self.recent.len() > n {
+            self.recent.pop_front();
+        }
+        if self.recent.len() < n {
+            return;
+        }
+        let mut sorted: Vec<f64> = self.recent.iter().copied().collect();
+        sorted.sort_by(f64::total_cmp);
+        let obs = sorted[n / 2];
         let turn = match self.phase {
             Phase::Forwards if obs >= self.config.near_obs_px => Some(Phase::Backwards),
             Phase::Backwards if obs <= self.config.far_obs_px => Some(Phase::Forwards),
@@ -84,6 +104,7 @@ impl Behaviour for TrainingBehaviour {
         };
         if let Some(phase) = turn {
             self.phase = phase;
+            self.recent.clear();
             self.pick(t_s);
         }
     }

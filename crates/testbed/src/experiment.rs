@@ -78,12 +78,13 @@ pub struct Scenario {
 }
 
 /// The settings `--set` understands.
-pub const SETTING_KEYS: [&str; 17] = [
+pub const SETTING_KEYS: [&str; 18] = [
     "learner.gamma",
     "learner.beta",
     "learner.t_start",
     "learner.sensor_degree",
     "learner.action_degree",
+    "learner.sensor_window",
     "camera.noise_px",
     "camera.width_px",
     "camera.height_px",
@@ -216,6 +217,7 @@ impl Scenario {
             "learner.t_start" => self.learner.t_start_s = number()?,
             "learner.sensor_degree" => self.learner.sensor_degree = count()?,
             "learner.action_degree" => self.learner.action_degree = count()?,
+            "learner.sensor_window" => self.learner.sensor_window = count()?,
             "camera.noise_px" => self.sim.camera.noise_px = number()?,
             "camera.width_px" => self.sim.camera.intrinsics.width_px = pixels()?,
             "camera.height_px" => self.sim.camera.intrinsics.height_px = pixels()?,
@@ -450,15 +452,41 @@ impl Figures {
     }
 }
 
+/// How far beyond each end of the test range the behaviour turns round, m: the
+/// readings of a walking robot run about a pixel below those of one standing, so
+/// turning at the end's own reading would stop short of it.
+pub const TURN_MARGIN_M: f64 = 0.15;
+
 /// The behaviour's thresholds from the measured sensor model: turn round at the
-/// readings seen at the nearest and farthest test distances.
+/// readings expected [`TURN_MARGIN_M`] beyond the nearest and farthest test
+/// distances, from the pinhole law `d = a + b / obs` fitted to the measured points
+/// (or at the end points' own readings if that fit fails).
 pub fn behaviour_for(models: &MeasuredModels) -> BehaviourConfig {
-    let obs = |i: usize| models.sensor.get(i).map_or(f64::NAN, |s| s.1);
+    let end = |i: usize| {
+        models
+            .sensor
+            .get(i)
+            .map_or((f64::NAN, f64::NAN), |s| (s.0, s.1))
+    };
+    let (near, far) = (end(0), end(models.sensor.len().saturating_sub(1)));
+    let inverse: Vec<(f64, f64)> = models.sensor.iter().map(|s| (1.0 / s.1, s.0)).collect();
+    let (near_obs_px, far_obs_px) = match metrics::best_polynomial(&inverse, 1) {
+        Some(p) if p.coeffs()[1] > 0.0 => {
+            let (a, b) = (p.coeffs()[0], p.coeffs()[1]);
+            let obs_at = |d_mm: f64| b / (d_mm - a);
+            (
+                obs_at(near.0 - 1000.0 * TURN_MARGIN_M),
+                obs_at(far.0 + 1000.0 * TURN_MARGIN_M),
+            )
+        }
+        _ => (near.1, far.1),
+    };
     BehaviourConfig {
         max_command: 300.0,
         hold_s: 3.0,
-        near_obs_px: obs(0),
-        far_obs_px: obs(models.sensor.len().saturating_sub(1)),
+        near_obs_px,
+        far_obs_px,
+        turn_median_of: crate::behaviour::TURN_MEDIAN_OF,
     }
 }
 

@@ -98,6 +98,7 @@ pub fn run_trial(
         hold_s: 3.0,
         near_obs_px: true_obs_px(1100.0),
         far_obs_px: true_obs_px(3800.0),
+        turn_median_of: crate::behaviour::TURN_MEDIAN_OF,
     };
     let mut behaviour = TrainingBehaviour::new(
         behaviour_config,
