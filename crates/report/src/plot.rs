@@ -15,8 +15,9 @@ pub const SIZE: (u32, u32) = (800, 560);
 pub(crate) const FONT: &str = "sans-serif";
 static FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
 
-/// Registers the bundled font with plotters (once per process).
-pub(crate) fn register_font() -> Result<(), ReportError> {
+/// Registers the bundled font with plotters as "sans-serif" (once per process);
+/// drawing text with plotters needs it.
+pub fn register_font() -> Result<(), ReportError> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         plotters::style::register_font(FONT, FontStyle::Normal, FONT_BYTES).is_ok()
@@ -153,6 +154,8 @@ impl Chart {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        // A font that does not parse shows up as the text's own drawing error.
+        let _ = register_font();
         root.fill(&WHITE)?;
         let ((x0, x1), (y0, y1)) = self.ranges();
         let mut chart = ChartBuilder::on(root)

@@ -144,6 +144,11 @@ impl TrialRunner {
         })
     }
 
+    /// The simulated robot and world (for viewers; learners never see it).
+    pub fn sim(&self) -> &QuadrupedSim {
+        &self.sim
+    }
+
     /// The behaviour driving the robot.
     pub fn behaviour(&self) -> &dyn Behaviour {
         self.behaviour.as_ref()
