@@ -31,6 +31,9 @@ struct Args {
     /// Ramp-up t_start, s.
     #[arg(long, default_value_t = ScasmConfig::default().t_start_s)]
     t_start: f64,
+    /// Readings averaged per point of the sensor fit (1: the paper's algorithm).
+    #[arg(long, default_value_t = ScasmConfig::default().sensor_window)]
+    sensor_window: usize,
 }
 
 fn mean_std(v: &[f64]) -> (f64, f64) {
@@ -57,6 +60,7 @@ fn main() -> Result<()> {
         gamma: args.gamma,
         beta: args.beta,
         t_start_s: args.t_start,
+        sensor_window: args.sensor_window,
         ..Default::default()
     }
     .validate()?;

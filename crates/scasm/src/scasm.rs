@@ -64,7 +64,8 @@ struct ReadingWindow {
 }
 
 impl Default for Scasm {
-    /// The paper's simultaneous learner with its hyper-parameters.
+    /// The simultaneous learner with the default hyper-parameters (the paper's,
+    /// with readings averaged in fives for the sensor fit: see [`ScasmConfig`]).
     fn default() -> Self {
         Self::build(ScasmParams::default(), Mode::Simultaneous)
     }
