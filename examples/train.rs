@@ -223,6 +223,10 @@ fn main() -> Result<()> {
         trials: &outcomes,
         demos: &demos,
         best: (best.0, best.1),
+        degrees: (
+            scenario.learner.action_degree,
+            scenario.learner.sensor_degree,
+        ),
     };
     let figures = report::paper::write_figures(&out, &data)?;
     let page = Page {

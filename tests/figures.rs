@@ -141,6 +141,7 @@ fn a_run_writes_all_seven_figures_and_its_page() {
         trials: &trials,
         demos,
         best: (10.0, 30.0),
+        degrees: (4, 3),
     };
     let figures = report::paper::write_figures(&dir, &data).expect("figures");
     let stems: Vec<&str> = figures.iter().map(|f| f.stem).collect();

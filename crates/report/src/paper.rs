@@ -24,6 +24,8 @@ pub struct RunData<'a> {
     pub demos: &'a Demos,
     /// Best possible errors: action polynomial (mm/s), sensor polynomial (mm).
     pub best: (f64, f64),
+    /// The learned polynomials' degrees: action, sensor.
+    pub degrees: (usize, usize),
 }
 
 /// One figure: its file stem and what it shows.
@@ -56,7 +58,7 @@ pub fn figures(data: &RunData) -> Vec<Figure> {
         typical.map(fig6),
         typical.and_then(|t| fig7a(t, data.measured)),
         typical.and_then(|t| fig7b(t, data.measured)),
-        Some(fig8(data.trials, data.best)),
+        Some(fig8(data.trials, data.best, data.degrees)),
     ]
     .into_iter()
     .flatten()
@@ -320,7 +322,7 @@ fn over_trials(
         .collect()
 }
 
-fn fig8(trials: &[TrialOutcome], best: (f64, f64)) -> Figure {
+fn fig8(trials: &[TrialOutcome], best: (f64, f64), degrees: (usize, usize)) -> Figure {
     let action = over_trials(trials, |j| j.action_rmse_mm_s);
     let sensor = over_trials(trials, |j| j.sensor_rmse_mm);
     let t_end = trials
@@ -362,13 +364,13 @@ fn fig8(trials: &[TrialOutcome], best: (f64, f64)) -> Figure {
                     mean(&sensor),
                 ),
                 Series::new(
-                    "best quartic action model",
+                    &format!("best degree-{} action model", degrees.0),
                     Mark::Dashed,
                     colours::BLUE,
                     vec![(0.0, best.0), (t_end, best.0)],
                 ),
                 Series::new(
-                    "best cubic sensor model",
+                    &format!("best degree-{} sensor model", degrees.1),
                     Mark::Dashed,
                     colours::RED,
                     vec![(0.0, best.1), (t_end, best.1)],

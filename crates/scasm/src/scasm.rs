@@ -65,7 +65,7 @@ struct ReadingWindow {
 
 impl Default for Scasm {
     /// The simultaneous learner with the default hyper-parameters (the paper's,
-    /// with readings averaged in fives for the sensor fit: see [`ScasmConfig`]).
+    /// with readings averaged in fives for the sensor fit: see [`crate::ScasmConfig`]).
     fn default() -> Self {
         Self::build(ScasmParams::default(), Mode::Simultaneous)
     }
