@@ -131,6 +131,7 @@ pub fn find_band(
     let (r0, r1) = (clamp(lo[1].floor() - 1.0, h), clamp(hi[1].ceil() + 1.0, h));
 
     let beacon_body = world.colliders[band].parent();
+    let may_occlude = anything_between(world, camera_pose, beacon, beacon_body);
     let o = camera_pose.translation;
     let origin = [o.x, o.y, o.z].map(f64::from);
     let max_toi: Real = 1e3;
@@ -143,6 +144,10 @@ pub fn find_band(
             let Some(band_t) = beacon.ray_hits_band(origin, dir) else {
                 continue;
             };
+            if !may_occlude {
+                pixels.push((col, row));
+                continue;
+            }
             // Only something other than the beacon itself (its pole's top face
             // coincides with the band's bottom face) can hide the band.
             let first = world.cast_ray(&Ray::new(o, d), max_toi, true, QueryFilter::default());
@@ -172,6 +177,47 @@ pub fn find_band(
         return Err(NoReading::CutByBorder);
     }
     Ok(BandBlob { pixels, rows, cols })
+}
+
+/// Whether any collider but the beacon's own could stand between the camera and
+/// the band: whether it meets the convex hull of the camera's centre and the
+/// band (rims drawn as polygons circumscribing the circles, so the hull holds
+/// every ray segment from the camera to the band). If none does, no pixel's ray
+/// can be blocked and the per-pixel ray casts are skipped; the answer is exact,
+/// not a heuristic, and any shape pair parry cannot test counts as "may".
+fn anything_between(
+    world: &PhysicsWorld,
+    camera_pose: &Pose,
+    beacon: &BeaconConfig,
+    beacon_body: Option<rapier3d::dynamics::RigidBodyHandle>,
+) -> bool {
+    use rapier3d::parry::query::intersection_test;
+    use rapier3d::parry::shape::ConvexPolyhedron;
+    const SIDES: u32 = 24;
+    let r = beacon.radius_m / (core::f64::consts::PI / f64::from(SIDES)).cos();
+    let mut points = vec![camera_pose.translation];
+    for k in 0..SIDES {
+        let a = f64::from(k) * core::f64::consts::TAU / f64::from(SIDES);
+        for z in [beacon.band_bottom_m(), beacon.band_top_m()] {
+            points.push(Vector::new(
+                (beacon.xy_m[0] + r * a.cos()) as Real,
+                (beacon.xy_m[1] + r * a.sin()) as Real,
+                z as Real,
+            ));
+        }
+    }
+    let Some(hull) = ConvexPolyhedron::from_convex_hull(&points) else {
+        return true;
+    };
+    let identity = Pose::IDENTITY;
+    world
+        .colliders
+        .iter()
+        .filter(|(_, c)| c.parent() != beacon_body)
+        .any(|(_, c)| {
+            intersection_test(&identity, &hull, c.position(), c.shape())
+                .map_or(true, |i| i.intersecting)
+        })
 }
 
 /// The camera: finds the band and turns it into a noisy reading and a bearing.
