@@ -81,9 +81,6 @@ fn ten_minutes_of_training_behaviour_stay_upright_and_face_the_beacon() {
 }
 
 #[test]
-#[ignore = "not met yet: turning by the beacon's bearing keeps the angle off the line, so \
-            the trot's sideways creep adds up; at most 0.15 m off the line in ten minutes \
-            (seed 0; target < 0.1 m)"]
 fn ten_minutes_of_training_behaviour_stay_near_the_line() {
     let w = walk(600.0, 0);
     assert!(

@@ -13,6 +13,12 @@ pub struct HeadingConfig {
     pub gain_m_per_rad: f64,
     /// Largest turning correction, m.
     pub max_steer_m: f64,
+    /// How far past the beacon the robot aims, per radian that the beacon's
+    /// direction (heading plus bearing) strays from the line it started on:
+    /// walking along that aim brings it back to its line, forwards and
+    /// backwards alike. 0 is a pure pursuit of the beacon, which keeps the angle
+    /// off the line, so any sideways creep adds up.
+    pub line_gain: f64,
 }
 
 impl Default for HeadingConfig {
@@ -20,6 +26,7 @@ impl Default for HeadingConfig {
         Self {
             gain_m_per_rad: 0.4,
             max_steer_m: 0.02,
+            line_gain: 1.0,
         }
     }
 }
@@ -70,11 +77,16 @@ impl HeadingKeeper {
         f64::from(f.y.atan2(f.x))
     }
 
-    /// The turning correction (positive: left) that centres the beacon, or holds
-    /// the starting heading while the beacon is not in view.
-    pub fn steer(&self, config: &HeadingConfig) -> f64 {
+    /// The turning correction (positive: left) for a walk in direction
+    /// `walking` (the command's sign): it keeps the beacon near the centre of
+    /// the image, aimed a little to the side that steers the robot back onto
+    /// its starting line. Without a bearing it holds the starting heading.
+    pub fn steer(&self, config: &HeadingConfig, walking: f64) -> f64 {
         let error = match self.bearing_rad {
-            Some(bearing) => bearing,
+            Some(bearing) => {
+                let off_line = self.estimate_rad() + bearing;
+                bearing + config.line_gain * walking.signum() * off_line
+            }
             None => -self.estimate_rad(),
         };
         (config.gain_m_per_rad * error).clamp(-config.max_steer_m, config.max_steer_m)

@@ -195,6 +195,9 @@ pub struct QuadrupedSim {
     walk: WalkEngine,
     servos: ServoSetpoints,
     heading: HeadingKeeper,
+    /// The torso's attitude at the end of the previous step (the gyro measures
+    /// the rotation between steps).
+    last_attitude: Rotation,
     command_mm_s: f64,
     steps: u64,
     start_xy_m: [f64; 2],
@@ -329,6 +332,7 @@ impl QuadrupedSim {
             })
             .collect();
 
+        let last_attitude = world.bodies[torso].position().rotation;
         let mut sim = Self {
             config,
             world,
@@ -340,6 +344,7 @@ impl QuadrupedSim {
             walk,
             servos: ServoSetpoints::new(initial_angles.clone()),
             heading: HeadingKeeper::default(),
+            last_attitude,
             command_mm_s: 0.0,
             steps: 0,
             start_xy_m,
@@ -434,7 +439,8 @@ impl QuadrupedSim {
             self.control();
         }
         self.world.step();
-        self.heading.integrate(self.gyro(), self.config.dt_s);
+        let rate = self.gyro();
+        self.heading.integrate(rate, self.config.dt_s);
         self.steps += 1;
         // Frames come at their own rate: the first at one frame period, then
         // whenever simulated time reaches the next multiple of it.
@@ -482,7 +488,7 @@ impl QuadrupedSim {
     /// move the servo setpoints.
     fn control(&mut self) {
         let period = self.config.servo.command_period_s;
-        let steer = self.heading.steer(&self.config.heading);
+        let steer = self.heading.steer(&self.config.heading, self.command_mm_s);
         let targets = self.walk.update(period, self.command_mm_s, steer);
         let flat: Vec<Option<f64>> = targets
             .iter()
@@ -496,9 +502,14 @@ impl QuadrupedSim {
     }
 
     /// What the torso's gyro reads: its angular velocity in its own frame, rad/s.
-    fn gyro(&self) -> [f64; 3] {
-        let body = &self.world.bodies[self.torso];
-        let w = body.position().rotation.inverse() * body.angvel();
+    /// The gyro: the torso's mean angular rate over the last step, in its own
+    /// frame (from the rotation it actually made, as a rate gyro measures it).
+    fn gyro(&mut self) -> [f64; 3] {
+        let now = self.world.bodies[self.torso].position().rotation;
+        let delta = self.last_attitude.inverse() * now;
+        self.last_attitude = now;
+        let (axis, angle) = delta.to_axis_angle();
+        let w = axis * (angle / self.config.dt_s as Real);
         [w.x, w.y, w.z].map(f64::from)
     }
 
