@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, ensure};
 use clap::Parser;
-use quadsim::vision::{self, find_band};
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig};
 use testbed::{measure, output};
 
@@ -42,35 +41,9 @@ fn save_frame(
     )?;
     sim.advance(1.0);
     let intr = config.camera.intrinsics;
-    let blob = find_band(
-        sim.world(),
-        &sim.camera_pose(),
-        &intr,
-        &config.beacon,
-        sim.band_collider(),
-    )
-    .ok();
-    let rgb = vision::render_rgb(&intr, blob.as_ref());
     // Each camera pixel as a 3 x 3 block, so a person can see it.
-    const SCALE: usize = 3;
-    let (w, h) = (intr.width_px as usize, intr.height_px as usize);
-    let mut big = Vec::with_capacity(rgb.len() * SCALE * SCALE);
-    for row in 0..h * SCALE {
-        for col in 0..w * SCALE {
-            let i = 3 * ((row / SCALE) * w + col / SCALE);
-            big.extend_from_slice(&rgb[i..i + 3]);
-        }
-    }
-    let file =
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
-    let mut enc = png::Encoder::new(
-        std::io::BufWriter::new(file),
-        (w * SCALE) as u32,
-        (h * SCALE) as u32,
-    );
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
-    enc.write_header()?.write_image_data(&big)?;
+    let (big, size) = report::upscale_rgb(&sim.camera_image(), (intr.width_px, intr.height_px), 3);
+    report::write_png(path, &big, size)?;
     Ok(())
 }
 

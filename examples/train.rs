@@ -284,40 +284,26 @@ fn results_table(
     .map(String::from)
     .to_vec();
     let paper = Figures::paper();
+    let ours = |m: f64, s: f64, range: f64| {
+        format!(
+            "{m:.1} +- {s:.1} ({:.1} % of {range:.0})",
+            100.0 * m / range
+        )
+    };
+    let pair = |a: f64, b: f64| format!("{a:.1} / {b:.1}");
     let rows = vec![
         vec![
             "action RMSE (mm/s)".into(),
-            format!(
-                "{:.1} +- {:.1} ({:.1} % of {:.0})",
-                mean.action_rmse_mm_s,
-                std.action_rmse_mm_s,
-                100.0 * mean.action_rmse_mm_s / velocity_range,
-                velocity_range
-            ),
+            ours(mean.action_rmse_mm_s, std.action_rmse_mm_s, velocity_range),
             format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
-            format!(
-                "{:.1} / {:.1}",
-                mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s
-            ),
-            format!(
-                "{:.1} / {:.1}",
-                mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s
-            ),
+            pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
+            pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
         ],
         vec![
             "sensor RMSE (mm)".into(),
-            format!(
-                "{:.1} +- {:.1} ({:.1} % of {:.0})",
-                mean.sensor_rmse_mm,
-                std.sensor_rmse_mm,
-                100.0 * mean.sensor_rmse_mm / distance_range,
-                distance_range
-            ),
+            ours(mean.sensor_rmse_mm, std.sensor_rmse_mm, distance_range),
             format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
-            format!(
-                "{:.1} / {:.1}",
-                mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm
-            ),
+            pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
             "-".into(),
         ],
         vec![

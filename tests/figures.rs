@@ -19,7 +19,7 @@ fn setup() -> &'static (Scenario, MeasuredModels, Demos) {
     })
 }
 
-/// The slope's sign of `p` at `n` points over `[lo, hi]`.
+/// Whether `p` rises (or falls, if not `increasing`) over each twentieth of `[lo, hi]`.
 fn monotone(p: &Polynomial, lo: f64, hi: f64, increasing: bool) -> bool {
     (0..20).all(|i| {
         let x = lo + (hi - lo) * i as f64 / 20.0;

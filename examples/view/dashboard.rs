@@ -4,7 +4,6 @@
 
 use plotters::chart::SeriesLabelPosition;
 use plotters::prelude::*;
-use quadsim::vision::{find_band, render_rgb};
 use report::plot::{Chart, Mark, Series, colours};
 use scasm::{CalibrationLearner, Scasm};
 use testbed::behaviour::Phase;
@@ -32,68 +31,40 @@ pub struct Moment<'a> {
 /// Draws the dashboard into an RGB buffer of [`SIZE`].
 pub fn render(m: &Moment) -> Result<Vec<u8>, String> {
     let mut rgb = vec![255u8; (SIZE.0 * SIZE.1 * 3) as usize];
-    let camera = {
+    {
         let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
         let e = |e: DrawingAreaErrorKind<_>| e.to_string();
         root.fill(&WHITE).map_err(e)?;
         let (top, bottom) = root.split_vertically(TOP_H);
         let (world, right) = top.split_horizontally(SCENE_W);
         scene::draw(&world, m.runner.sim()).map_err(e)?;
-        world
-            .draw(&Text::new(
-                "the robot and the beacon (live physics)",
-                (12, 10),
-                ("sans-serif", 18).into_font(),
-            ))
-            .map_err(e)?;
-        let camera = camera_image(m.runner);
-        right
-            .draw(&Text::new(
-                "head camera: band and measured extent",
-                (16, 10),
-                ("sans-serif", 18).into_font(),
-            ))
-            .map_err(e)?;
+        for (area, title, x) in [
+            (&world, "the robot and the beacon (live physics)", 12),
+            (&right, "head camera: band and measured extent", 16),
+        ] {
+            let font = ("sans-serif", 18).into_font();
+            area.draw(&Text::new(title, (x, 10), font)).map_err(e)?;
+        }
         status(&right, m).map_err(e)?;
         let panels = bottom.split_evenly((1, 2));
         action_chart(m).draw(&panels[0]).map_err(e)?;
         sensor_chart(m).draw(&panels[1]).map_err(e)?;
         root.present().map_err(e)?;
-        camera
-    };
+    }
     // The camera's image, scaled up whole pixels, blitted under the panel title.
-    let (img, w, h) = camera;
+    let intr = m.runner.sim().config().camera.intrinsics;
+    let (w, h) = (intr.width_px, intr.height_px);
     let scale = ((SIZE.0 - SCENE_W - 32) / w).min(320 / h).max(1);
+    let camera = m.runner.sim().camera_image();
+    let (img, (iw, ih)) = report::upscale_rgb(&camera, (w, h), scale);
     let (x0, y0) = (SCENE_W + 16, 40);
-    for row in 0..h * scale {
-        for col in 0..w * scale {
-            let s = 3 * ((row / scale) * w + col / scale) as usize;
-            let d = 3 * ((y0 + row) * SIZE.0 + x0 + col) as usize;
-            if d + 3 <= rgb.len() {
-                rgb[d..d + 3].copy_from_slice(&img[s..s + 3]);
-            }
-        }
+    for row in 0..ih.min(SIZE.1 - y0) {
+        let d = 3 * ((y0 + row) * SIZE.0 + x0) as usize;
+        let s = 3 * (row * iw) as usize;
+        let n = 3 * iw.min(SIZE.0 - x0) as usize;
+        rgb[d..d + n].copy_from_slice(&img[s..s + n]);
     }
     Ok(rgb)
-}
-
-/// What the head camera sees now: `(rgb, width, height)`.
-fn camera_image(runner: &TrialRunner) -> (Vec<u8>, u32, u32) {
-    let sim = runner.sim();
-    let intr = sim.config().camera.intrinsics;
-    let blob = find_band(
-        sim.world(),
-        &sim.camera_pose(),
-        &intr,
-        &sim.config().beacon,
-        sim.band_collider(),
-    )
-    .ok();
-    (
-        render_rgb(&intr, blob.as_ref()),
-        intr.width_px,
-        intr.height_px,
-    )
 }
 
 fn status<DB: DrawingBackend>(

@@ -9,12 +9,12 @@ mod dashboard;
 mod scene;
 
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Parser;
 use testbed::experiment;
-use testbed::trial::{TrialConfig, TrialRunner};
+use testbed::trial::{TraceRow, TrialConfig, TrialRunner};
 
 /// Show a SCASM training trial on the simulated quadruped, live.
 #[derive(Debug, Parser)]
@@ -78,70 +78,48 @@ fn main() -> Result<()> {
 
     let started = Instant::now();
     let mut last = None;
-    let mut picture = Vec::new();
-    let mut frame_buffer = vec![0u32; w * h];
-    loop {
-        if let Some(win) = &window {
-            if !win.is_open() || win.is_key_down(minifb::Key::Escape) {
-                break;
-            }
-        }
-        // Catch the simulation up with the wall clock (at --speed), a bounded
-        // number of frames at a time so the window stays responsive.
-        let sim_due = if window.is_some() {
-            started.elapsed().as_secs_f64() * args.speed
-        } else {
-            f64::INFINITY // headless: as fast as it goes
-        };
-        let mut stepped = 0;
-        while !runner.finished()
-            && last.is_none_or(|r: testbed::trial::TraceRow| r.t_s < sim_due)
-            && stepped < 40
-        {
-            last = Some(runner.step_frame(&mut learner)?);
-            stepped += 1;
-        }
+    let draw = |runner: &TrialRunner, learner: &scasm::Scasm, last: Option<TraceRow>| {
         let sim_t = last.map_or(0.0, |r| r.t_s);
-        let moment = dashboard::Moment {
-            runner: &runner,
-            learner: &learner,
+        dashboard::render(&dashboard::Moment {
+            runner,
+            learner,
             models: &models,
             last,
             seed: args.seed,
             realtime: sim_t / started.elapsed().as_secs_f64().max(1e-9),
-        };
-        let headless_done = window.is_none() && runner.finished();
-        if window.is_some() || headless_done {
-            picture = dashboard::render(&moment).map_err(|e| anyhow!(e))?;
-        }
-        if let Some(win) = &mut window {
+        })
+        .map_err(|e| anyhow!(e))
+    };
+    if let Some(win) = &mut window {
+        let mut frame_buffer = vec![0u32; w * h];
+        while win.is_open() && !win.is_key_down(minifb::Key::Escape) {
+            // Catch the simulation up with the wall clock (at --speed), a bounded
+            // number of frames at a time so the window stays responsive.
+            let sim_due = started.elapsed().as_secs_f64() * args.speed;
+            for _ in 0..40 {
+                if runner.finished() || last.is_some_and(|r: TraceRow| r.t_s >= sim_due) {
+                    break;
+                }
+                last = Some(runner.step_frame(&mut learner)?);
+            }
+            let picture = draw(&runner, &learner, last)?;
             for (px, c) in frame_buffer.iter_mut().zip(picture.chunks_exact(3)) {
                 *px = u32::from(c[0]) << 16 | u32::from(c[1]) << 8 | u32::from(c[2]);
             }
             win.update_with_buffer(&frame_buffer, w, h)?;
-        } else if runner.finished() {
-            break;
-        }
-        if runner.finished() && window.is_some() {
-            std::thread::sleep(Duration::from_millis(200));
-            if args.seconds.is_some() {
+            if runner.finished() && args.seconds.is_some() {
                 break;
             }
         }
+    } else {
+        // Headless: as fast as it goes, drawn once at the end.
+        while !runner.finished() {
+            last = Some(runner.step_frame(&mut learner)?);
+        }
     }
     if let Some(path) = &args.screenshot {
-        if picture.is_empty() {
-            let moment = dashboard::Moment {
-                runner: &runner,
-                learner: &learner,
-                models: &models,
-                last,
-                seed: args.seed,
-                realtime: 0.0,
-            };
-            picture = dashboard::render(&moment).map_err(|e| anyhow!(e))?;
-        }
-        save_png(path, &picture, dashboard::SIZE)?;
+        let picture = draw(&runner, &learner, last)?;
+        report::write_png(path, &picture, dashboard::SIZE)?;
         println!("wrote {}", path.display());
     }
     println!(
@@ -149,16 +127,5 @@ fn main() -> Result<()> {
         last.map_or(0.0, |r| r.t_s),
         started.elapsed().as_secs_f64()
     );
-    window.take();
-    Ok(())
-}
-
-fn save_png(path: &std::path::Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<()> {
-    let file =
-        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
-    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
-    enc.write_header()?.write_image_data(rgb)?;
     Ok(())
 }

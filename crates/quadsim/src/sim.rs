@@ -471,6 +471,22 @@ impl QuadrupedSim {
         }
     }
 
+    /// What the head camera sees now, as an RGB image of its intrinsics' size
+    /// (see [`crate::vision::render_rgb`]): for viewers and saved frames, not
+    /// the noisy reading the host gets.
+    pub fn camera_image(&self) -> Vec<u8> {
+        let intrinsics = self.config.camera.intrinsics;
+        let blob = crate::vision::find_band(
+            &self.world,
+            &self.camera_pose(),
+            &intrinsics,
+            &self.config.beacon,
+            self.band,
+        )
+        .ok();
+        crate::vision::render_rgb(&intrinsics, blob.as_ref())
+    }
+
     /// The band's collider in the world (for rendering what the camera sees).
     pub fn band_collider(&self) -> ColliderHandle {
         self.band

@@ -41,3 +41,23 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ReportError>
     std::fs::write(&tmp, bytes).map_err(io)?;
     std::fs::rename(&tmp, path).map_err(io)
 }
+
+/// Writes an RGB image (row-major, 3 bytes a pixel) of `size` as a PNG, whole or
+/// not at all.
+pub fn write_png(path: &Path, rgb: &[u8], size: (u32, u32)) -> Result<(), ReportError> {
+    write_atomic(path, &plot::encode_png(rgb, size)?)
+}
+
+/// An RGB image of `size` with each pixel drawn as a `k` x `k` block, so that a
+/// person can see a small camera's pixels. Returns the image and its size.
+pub fn upscale_rgb(rgb: &[u8], (w, h): (u32, u32), k: u32) -> (Vec<u8>, (u32, u32)) {
+    let (w, h, k) = (w as usize, h as usize, k.max(1) as usize);
+    let mut big = Vec::with_capacity(rgb.len() * k * k);
+    for row in 0..h * k {
+        for col in 0..w * k {
+            let i = 3 * ((row / k) * w + col / k);
+            big.extend_from_slice(&rgb[i..i + 3]);
+        }
+    }
+    (big, ((w * k) as u32, (h * k) as u32))
+}

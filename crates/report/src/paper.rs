@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use plotters::chart::SeriesLabelPosition;
+use plotters::style::RGBColor;
 use scasm::Polynomial;
 use testbed::demos::{CONSTANT_COMMAND, DemoRun, Demos};
 use testbed::experiment::MeasuredModels;
@@ -94,6 +95,18 @@ fn obs_span(trace: &[TraceRow]) -> (f64, f64) {
     })
 }
 
+/// The run's sensor model over the readings it saw, if it has one.
+fn sensor_curve(run: &DemoRun, label: &str, mark: Mark, colour: RGBColor) -> Option<Series> {
+    let s = run.sensor?;
+    let (lo, hi) = obs_span(&run.trace);
+    Some(Series::new(
+        label,
+        mark,
+        colour,
+        curve(lo, hi, 100, |o| s.eval(o)),
+    ))
+}
+
 fn fig2a(walk: &DemoRun) -> Figure {
     let mut series = vec![Series::new(
         "observations",
@@ -101,15 +114,12 @@ fn fig2a(walk: &DemoRun) -> Figure {
         colours::BLUE,
         readings(&walk.trace).map(|(r, o)| (o, r.t_s)).collect(),
     )];
-    if let Some(s) = walk.sensor {
-        let (lo, hi) = obs_span(&walk.trace);
-        series.push(Series::new(
-            "best-fit cubic",
-            Mark::Dashed,
-            colours::RED,
-            curve(lo, hi, 100, |o| s.eval(o)),
-        ));
-    }
+    series.extend(sensor_curve(
+        walk,
+        "best-fit cubic",
+        Mark::Dashed,
+        colours::RED,
+    ));
     Figure {
         stem: "fig2a",
         chart: Chart {
@@ -138,15 +148,12 @@ fn fig2b(run: &DemoRun) -> Figure {
             points(false),
         ),
     ];
-    if let Some(s) = run.sensor {
-        let (lo, hi) = obs_span(&run.trace);
-        series.push(Series::new(
-            "best-fit cubic (to all data)",
-            Mark::Line,
-            colours::BLACK,
-            curve(lo, hi, 100, |o| s.eval(o)),
-        ));
-    }
+    series.extend(sensor_curve(
+        run,
+        "best-fit cubic (to all data)",
+        Mark::Line,
+        colours::BLACK,
+    ));
     Figure {
         stem: "fig2b",
         chart: Chart {
