@@ -32,13 +32,19 @@ fn main() -> Result<()> {
     let wall = started.elapsed().as_secs_f64();
 
     println!(
-        "{:>8} {:>14} {:>10} {:>8}",
-        "command", "velocity mm/s", "std mm/s", "upright"
+        "{:>8} {:>14} {:>10} {:>10} {:>10} {:>8}",
+        "command", "velocity mm/s", "std mm/s", "min", "max", "upright"
     );
     for m in &measured {
+        let t = &m.timings_mm_s;
         println!(
-            "{:>8.0} {:>14.1} {:>10.1} {:>8}",
-            m.command, m.velocity_mm_s, m.std_mm_s, m.upright
+            "{:>8.0} {:>14.1} {:>10.1} {:>10.1} {:>10.1} {:>8}",
+            m.command,
+            m.velocity_mm_s,
+            m.std_mm_s,
+            t.iter().copied().fold(f64::INFINITY, f64::min),
+            t.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            m.upright
         );
     }
     let points: Vec<(f64, f64)> = measured
@@ -50,7 +56,21 @@ fn main() -> Result<()> {
     let a0 = metrics::action_error(&Polynomial::identity(), &points);
     let line = metrics::best_polynomial_rmse(&points, 1).unwrap_or(f64::NAN);
     let quartic = metrics::best_polynomial_rmse(&points, 4).unwrap_or(f64::NAN);
-    println!("\nvelocity range {range:.0} mm/s");
+    let worst = measured.iter().map(|m| m.std_mm_s).fold(0.0, f64::max);
+    let monotone = points.windows(2).all(|w| w[1].1 > w[0].1);
+    println!(
+        "\n{} timings of {} m each after {} s of walking at the command",
+        stopwatch.repeats, stopwatch.distance_m, stopwatch.settle_s
+    );
+    println!(
+        "largest std {worst:.1} mm/s (the paper's <= 7); velocity {} in the command",
+        if monotone {
+            "increases monotonically"
+        } else {
+            "is NOT monotone"
+        }
+    );
+    println!("velocity range {range:.0} mm/s");
     println!(
         "identity model A0 after its best scale ({:.3}): RMSE {:.1} mm/s ({:.1} % of the range)",
         a0.scale,
@@ -66,11 +86,7 @@ fn main() -> Result<()> {
 
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
-    let rows: Vec<_> = measured
-        .iter()
-        .map(|m| (m.command, m.velocity_mm_s, m.std_mm_s))
-        .collect();
-    output::write_measured_action(&args.out, &rows)?;
+    output::write_measured_action(&args.out, &measured)?;
     let path = args.out.join("measured_action.csv");
     println!("wrote {}", path.display());
     Ok(())

@@ -15,7 +15,9 @@ use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
-use testbed::experiment::{self, Figures, MeasuredModels};
+use testbed::experiment;
+use testbed::reference::MeasuredModels;
+use testbed::summary::{self, Figures, TrialStatus};
 use testbed::sweep::{self, Axis, CombinationSummary, Results, Row};
 
 /// Sweep settings over a grid of values and seeds.
@@ -86,14 +88,19 @@ fn axes(args: &Args) -> Result<Vec<Axis>> {
 }
 
 /// The combination with the lowest sum of relative errors (action over the
-/// velocity range, sensor over the 2.4 m distance range).
+/// velocity range, sensor over the 2.4 m distance range), among those whose
+/// every run finished ok if there are any such.
 fn best(results: &Results, velocity_range: f64) -> Option<CombinationSummary> {
     let score = |m: &Figures| m.action_rmse_mm_s / velocity_range + m.sensor_rmse_mm / 2400.0;
     results
         .summary()
         .into_iter()
         .filter(|g| g.runs_ok > 0 && score(&g.mean).is_finite())
-        .min_by(|a, b| score(&a.mean).total_cmp(&score(&b.mean)))
+        .min_by(|a, b| {
+            (a.runs_failed > 0)
+                .cmp(&(b.runs_failed > 0))
+                .then(score(&a.mean).total_cmp(&score(&b.mean)))
+        })
 }
 
 fn report(results: &Results, velocity_range: f64) {
@@ -101,10 +108,23 @@ fn report(results: &Results, velocity_range: f64) {
         println!("no combination finished with both models learned");
         return;
     };
+    let failed: Vec<String> = results
+        .rows()
+        .filter(|r| !r.status.is_ok())
+        .map(|r| format!("{} ({})", r.run.key(), r.status))
+        .collect();
+    if !failed.is_empty() {
+        println!(
+            "\n{} runs did not finish ok and are not in any mean: {}",
+            failed.len(),
+            failed.join("; ")
+        );
+    }
     let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
     println!(
-        "\nbest combination (lowest sum of relative errors, {} runs): {}",
+        "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed): {}",
         g.runs_ok,
+        g.runs_failed,
         named.join(", ")
     );
     println!(
@@ -133,8 +153,12 @@ fn report(results: &Results, velocity_range: f64) {
         .find(|g| is_paper(g) && g.runs_ok > 0)
     {
         Some(g) => println!(
-            ":\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
-            g.mean.action_rmse_mm_s, g.mean.sensor_rmse_mm, g.mean.consistency
+            " ({} runs ok, {} failed):\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
+            g.runs_ok,
+            g.runs_failed,
+            g.mean.action_rmse_mm_s,
+            g.mean.sensor_rmse_mm,
+            g.mean.consistency
         ),
         None => println!(": not in this sweep"),
     }
@@ -226,7 +250,7 @@ fn main() -> Result<()> {
         let key = scenarios[i].reference_key();
         if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
             println!("measuring the reference models for {}...", slot.key());
-            slot.insert(experiment::measured_models(
+            slot.insert(testbed::reference::measured_models(
                 &scenarios[i],
                 Some(&args.cache),
             )?);
@@ -241,13 +265,13 @@ fn main() -> Result<()> {
     todo.par_iter().for_each(|&i| {
         let (run, scenario) = (&runs[i], &scenarios[i]);
         let models = &references[&scenario.reference_key()];
-        let best_possible = experiment::best_possible(&models.reference(), &scenario.learner);
+        let best_possible = summary::best_possible(&models.reference(), &scenario.learner);
         let (figures, status) = match experiment::run_one(scenario, models, run.seed) {
             Ok((outcome, _)) => (
                 Figures::of(&outcome, best_possible),
-                sweep::status_of(&outcome),
+                TrialStatus::of(&outcome),
             ),
-            Err(e) => (Figures::filled(f64::NAN), format!("error: {e}")),
+            Err(e) => (Figures::filled(f64::NAN), TrialStatus::Error(e.to_string())),
         };
         if let Ok(mut guard) = shared.lock() {
             guard.0.insert(Row {
@@ -271,11 +295,7 @@ fn main() -> Result<()> {
     let velocity_range = references
         .values()
         .next()
-        .map(|m| {
-            let v: Vec<f64> = m.action.iter().map(|a| a.1).collect();
-            v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
-        })
-        .unwrap_or(600.0);
+        .map_or(600.0, MeasuredModels::velocity_range_mm_s);
     report(&results, velocity_range);
     println!("results in {}", args.out.display());
     Ok(())

@@ -15,8 +15,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 use report::page::Page;
 use scasm::Polynomial;
 use testbed::demos::{Demos, run_demos};
-use testbed::experiment::{self, Figures, LearningMode};
+use testbed::experiment;
 use testbed::output;
+use testbed::scenario::LearningMode;
+use testbed::summary::{self, Aggregate, Figures, TrialStatus};
 use testbed::trial::TrialOutcome;
 
 /// Run SCASM training trials on the simulated quadruped.
@@ -126,7 +128,7 @@ fn main() -> Result<()> {
     let started = std::time::Instant::now();
 
     println!("Measuring the robot's true models (stopwatch and stand-and-read protocols)...");
-    let models = experiment::measured_models(&scenario, Some(&args.cache))?;
+    let models = testbed::reference::measured_models(&scenario, Some(&args.cache))?;
     println!(
         "  {} (cache key {})",
         if models.from_cache {
@@ -154,70 +156,80 @@ fn main() -> Result<()> {
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let write_errors = Mutex::new(Vec::new());
-    let results = experiment::run_trials(&scenario, &models, &seeds, &|o| {
-        if let Err(e) = write_trial(&out, o) {
+    let results = experiment::run_trials(&scenario, &models, &seeds, &|_, outcome| {
+        if let Some(e) = outcome.and_then(|o| write_trial(&out, o).err()) {
             if let Ok(mut v) = write_errors.lock() {
                 v.push(e.to_string());
             }
         }
         bar.inc(1);
-    })?;
+    });
     bar.finish();
     if let Some(e) = write_errors.lock().ok().and_then(|v| v.first().cloned()) {
         bail!("writing a trial's files: {e}");
     }
 
-    let best = experiment::best_possible(&models.reference(), &scenario.learner);
-    let figures: Vec<Figures> = results.iter().map(|(o, _)| Figures::of(o, best)).collect();
-    let (mean, std, paper) = (
-        Figures::mean(&figures),
-        Figures::std(&figures),
-        Figures::paper(),
-    );
-    let fell: Vec<u64> = results
+    // Every trial gets a status; only the ok ones enter the means and figures,
+    // and the others are counted and named wherever the means are shown.
+    let best = summary::best_possible(&models.reference(), &scenario.learner);
+    let per_trial: Vec<(u64, TrialStatus, Figures)> = results
         .iter()
-        .filter(|(o, _)| o.fell)
-        .map(|(o, _)| o.seed)
+        .map(|(seed, r)| match r {
+            Ok((o, _)) => (*seed, TrialStatus::of(o), Figures::of(o, best)),
+            Err(e) => (
+                *seed,
+                TrialStatus::Error(e.to_string()),
+                Figures::filled(f64::NAN),
+            ),
+        })
         .collect();
-    let trials: Vec<serde_json::Value> = results
+    let aggregate = Aggregate::of(&per_trial);
+    let (mean, std, paper) = (aggregate.mean, aggregate.std, Figures::paper());
+    let trials: Vec<serde_json::Value> = per_trial
         .iter()
-        .zip(&figures)
-        .map(|((o, _), f)| {
+        .map(|(seed, status, f)| {
             let mut v = serde_json::to_value(f).unwrap_or_default();
-            v["seed"] = o.seed.into();
-            v["fell"] = o.fell.into();
+            v["seed"] = (*seed).into();
+            v["status"] = status.to_string().into();
             v
         })
         .collect();
-    let summary = serde_json::json!({ "trials": trials, "mean": mean, "std": std, "paper": paper });
+    let summary = serde_json::json!({
+        "trials": trials,
+        "trials_ok": aggregate.ok(),
+        "trials_failed": aggregate.failed_json(),
+        "mean": mean,
+        "std": std,
+        "paper": paper,
+        "reference": models.describe(),
+    });
     std::fs::write(
         out.join("summary.json"),
         serde_json::to_string_pretty(&summary)?,
     )?;
+    ensure!(
+        aggregate.ok() > 0,
+        "no trial finished ok: {}",
+        aggregate.describe()
+    );
 
-    let velocity_range = models.action.iter().map(|a| a.1).fold(f64::MIN, f64::max)
-        - models.action.iter().map(|a| a.1).fold(f64::MAX, f64::min);
-    let distance_range = models.sensor.iter().map(|s| s.0).fold(f64::MIN, f64::max)
-        - models.sensor.iter().map(|s| s.0).fold(f64::MAX, f64::min);
+    let (velocity_range, distance_range) =
+        (models.velocity_range_mm_s(), models.distance_range_mm());
     let (header, rows) = results_table(&mean, &std, velocity_range, distance_range);
     println!();
     print_table(&header, &rows);
-    let ratios = format!(
-        "learned / best possible polynomial: action {:.2}x, sensor {:.2}x (paper {:.2}x, {:.2}x)",
-        mean.action_rmse_mm_s / mean.action_best_rmse_mm_s,
-        mean.sensor_rmse_mm / mean.sensor_best_rmse_mm,
-        paper.action_rmse_mm_s / paper.action_best_rmse_mm_s,
-        paper.sensor_rmse_mm / paper.sensor_best_rmse_mm,
-    );
-    println!("{ratios}");
-    if !fell.is_empty() {
-        println!("the robot tipped over in trials {fell:?}");
-    }
+    println!("{}", aggregate.describe());
+    println!("{}", models.describe());
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;
     write_demos(&out, &demos)?;
-    let outcomes: Vec<TrialOutcome> = results.into_iter().map(|(o, _)| o).collect();
+    let outcomes: Vec<TrialOutcome> = results
+        .into_iter()
+        .zip(&per_trial)
+        .filter(|(_, row)| row.1.is_ok())
+        .filter_map(|((_, r), _)| r.ok().map(|(o, _)| o))
+        .collect();
     let data = report::paper::RunData {
         measured: &models,
         trials: &outcomes,
@@ -234,15 +246,22 @@ fn main() -> Result<()> {
         paragraphs: vec![
             format!(
                 "{} trials of {} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
-                outcomes.len(),
+                per_trial.len(),
                 scenario.duration_s,
                 seeds[0],
                 seeds[seeds.len() - 1] + 1,
                 args.learner,
                 scenario.mode
             ),
-            ratios,
-            format!("Reference cache key {}.", scenario.reference_key()),
+            format!(
+                "{}; the means and figures are over the ok trials.",
+                aggregate.describe()
+            ),
+            format!(
+                "The {} (cache key {}).",
+                models.describe(),
+                scenario.reference_key()
+            ),
         ],
         header,
         rows,
@@ -259,7 +278,7 @@ fn main() -> Result<()> {
 
     println!(
         "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",
-        outcomes.len(),
+        per_trial.len(),
         mean.realtime_factor,
         started.elapsed().as_secs_f64(),
         out.display()
@@ -276,6 +295,7 @@ fn results_table(
 ) -> (Vec<String>, Vec<Vec<String>>) {
     let header = [
         "figure",
+        "learned / best poly (ours / paper)",
         "ours (mean +- std)",
         "paper",
         "best poly (ours / paper)",
@@ -291,9 +311,18 @@ fn results_table(
         )
     };
     let pair = |a: f64, b: f64| format!("{a:.1} / {b:.1}");
+    let ratio = |a: f64, best_a: f64, b: f64, best_b: f64| {
+        format!("{:.2}x / {:.2}x", a / best_a, b / best_b)
+    };
     let rows = vec![
         vec![
             "action RMSE (mm/s)".into(),
+            ratio(
+                mean.action_rmse_mm_s,
+                mean.action_best_rmse_mm_s,
+                paper.action_rmse_mm_s,
+                paper.action_best_rmse_mm_s,
+            ),
             ours(mean.action_rmse_mm_s, std.action_rmse_mm_s, velocity_range),
             format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
             pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
@@ -301,6 +330,12 @@ fn results_table(
         ],
         vec![
             "sensor RMSE (mm)".into(),
+            ratio(
+                mean.sensor_rmse_mm,
+                mean.sensor_best_rmse_mm,
+                paper.sensor_rmse_mm,
+                paper.sensor_best_rmse_mm,
+            ),
             ours(mean.sensor_rmse_mm, std.sensor_rmse_mm, distance_range),
             format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
             pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
@@ -308,6 +343,7 @@ fn results_table(
         ],
         vec![
             "consistency".into(),
+            "-".into(),
             format!("{:.3} +- {:.3}", mean.consistency, std.consistency),
             format!("{:.2} +- 0.06", paper.consistency),
             "-".into(),

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use testbed::experiment::{Scenario, SettingError};
+use testbed::scenario::{Scenario, SettingError};
 
 /// The flags that choose a scenario: robot, scenario file, and settings.
 #[derive(Debug, Clone, clap::Args)]

@@ -5,8 +5,10 @@
 use std::sync::OnceLock;
 
 use scasm::{CalibrationLearner, Event, EventError, Polynomial, Scasm};
-use testbed::experiment::{self, MeasuredModels, Scenario};
+use testbed::experiment;
 use testbed::metrics;
+use testbed::reference::MeasuredModels;
+use testbed::scenario::Scenario;
 use testbed::trial::{self, TrialConfig, TrialRunner};
 
 /// The measured reference, measured once per test run (and cached between runs).
@@ -15,7 +17,8 @@ fn setup() -> &'static (Scenario, MeasuredModels) {
     SETUP.get_or_init(|| {
         let scenario = Scenario::paper().expect("scenario");
         let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
-        let models = experiment::measured_models(&scenario, Some(&cache)).expect("measured");
+        let models =
+            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
         (scenario, models)
     })
 }

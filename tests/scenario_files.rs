@@ -2,7 +2,7 @@
 //! error that names it, a malformed file says where, and a refused file changes
 //! nothing.
 
-use testbed::experiment::Scenario;
+use testbed::scenario::Scenario;
 
 const PAPER: &str = include_str!("../assets/scenarios/paper.toml");
 

@@ -3,7 +3,10 @@
 
 use std::sync::OnceLock;
 
-use testbed::experiment::{self, Figures, MeasuredModels, Scenario};
+use testbed::experiment;
+use testbed::reference::MeasuredModels;
+use testbed::scenario::Scenario;
+use testbed::summary::{self, Figures, TrialStatus};
 use testbed::sweep::{self, Axis, Results, Row, Run};
 
 fn setup() -> &'static (Scenario, MeasuredModels) {
@@ -12,7 +15,8 @@ fn setup() -> &'static (Scenario, MeasuredModels) {
         let mut scenario = Scenario::paper().expect("scenario");
         scenario.set("trial.duration=12").expect("valid");
         let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
-        let models = experiment::measured_models(&scenario, Some(&cache)).expect("measured");
+        let models =
+            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
         (scenario, models)
     })
 }
@@ -31,11 +35,11 @@ fn run_all(runs: &[Run]) -> Results {
     for run in runs {
         let scenario = run.scenario(base).expect("valid");
         let (outcome, _) = experiment::run_one(&scenario, models, run.seed).expect("trial");
-        let best = experiment::best_possible(&models.reference(), &scenario.learner);
+        let best = summary::best_possible(&models.reference(), &scenario.learner);
         results.insert(Row {
             run: run.clone(),
             figures: Figures::of(&outcome, best),
-            status: sweep::status_of(&outcome),
+            status: TrialStatus::of(&outcome),
         });
     }
     results
@@ -133,7 +137,10 @@ fn a_resumed_sweep_skips_what_is_done_and_reads_back_exactly() {
     );
     back.write_summary(&dir).expect("summary");
     let summary = std::fs::read_to_string(dir.join("sweep_summary.csv")).expect("summary");
-    assert!(summary.starts_with("learner.gamma,learner.t_start,runs_ok,action_rmse_mm_s_mean"));
+    assert!(
+        summary
+            .starts_with("learner.gamma,learner.t_start,runs_ok,runs_failed,action_rmse_mm_s_mean")
+    );
 }
 
 #[test]

@@ -7,8 +7,8 @@ use plotters::prelude::*;
 use report::plot::{Chart, Mark, Series, colours};
 use scasm::{CalibrationLearner, Scasm};
 use testbed::behaviour::Phase;
-use testbed::experiment::MeasuredModels;
 use testbed::metrics;
+use testbed::reference::MeasuredModels;
 use testbed::trial::{TraceRow, TrialRunner};
 
 use crate::scene;
@@ -117,7 +117,7 @@ fn status<DB: DrawingBackend>(
 }
 
 fn action_chart(m: &Moment) -> Chart {
-    let measured: Vec<(f64, f64)> = m.models.action.iter().map(|a| (a.0, a.1)).collect();
+    let measured = m.models.reference().action;
     let mut series = vec![Series::new(
         "measured",
         Mark::Dot,
@@ -155,7 +155,7 @@ fn action_chart(m: &Moment) -> Chart {
 }
 
 fn sensor_chart(m: &Moment) -> Chart {
-    let measured: Vec<(f64, f64)> = m.models.sensor.iter().map(|s| (s.0, s.1)).collect();
+    let measured = m.models.reference().sensor;
     let mut series = vec![Series::new(
         "measured",
         Mark::Dot,

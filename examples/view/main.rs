@@ -50,7 +50,7 @@ fn main() -> Result<()> {
     report::plot::register_font()?;
     let scenario = args.scenario.scenario()?;
     println!("Measuring (or reading from the cache) the robot's true models...");
-    let models = experiment::measured_models(&scenario, Some(&args.cache))?;
+    let models = testbed::reference::measured_models(&scenario, Some(&args.cache))?;
     let reference = models.reference();
     let mut learner = experiment::learner_for(&scenario, &reference).map_err(|e| anyhow!(e))?;
     let config = TrialConfig {

@@ -31,6 +31,8 @@ pub struct LegDescription {
     pub limits_rad: [[f64; 2]; 3],
     /// Torque limits from the URDF, N m, in the same order.
     pub effort_nm: [f64; 3],
+    /// Joint speed limits from the URDF, rad/s, in the same order.
+    pub velocity_rad_s: [f64; 3],
 }
 
 impl LegDescription {
@@ -220,6 +222,7 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
     let mut joints = Vec::with_capacity(3);
     let mut limits_rad = [[0.0; 2]; 3];
     let mut effort_nm = [0.0; 3];
+    let mut velocity_rad_s = [0.0; 3];
     for (k, jn) in names.iter().enumerate() {
         let j = joint(urdf, jn)?;
         if !matches!(j.joint_type, JointType::Revolute) {
@@ -248,8 +251,15 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
                 format!("effort must be > 0, is {}", j.limit.effort),
             ));
         }
+        if !(j.limit.velocity.is_finite() && j.limit.velocity > 0.0) {
+            return Err(bad_joint(
+                jn,
+                format!("velocity limit must be > 0, is {}", j.limit.velocity),
+            ));
+        }
         limits_rad[k] = [lo, hi];
         effort_nm[k] = j.limit.effort;
+        velocity_rad_s[k] = j.limit.velocity;
         joints.push(j);
     }
     // The chain: torso -> abduction -> hip -> knee.
@@ -310,6 +320,7 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
         joints: names,
         limits_rad,
         effort_nm,
+        velocity_rad_s,
     })
 }
 

@@ -69,31 +69,39 @@ impl Default for GaitTable {
     /// An ERS-7-like trot. Step length and period change together, as on the
     /// real robot, so the command-to-speed response is not a straight line even
     /// before the physics has its say.
+    ///
+    /// The fast walks are as fast as the URDF's joint speed limit (6 rad/s)
+    /// allows with a steady gait: a foot's swing forwards peaks at about 1.6
+    /// times the stance speed, so the planned joint speeds at command +-300 are
+    /// 5.9 rad/s at the hip and 6.8-7.0 at the knee (the servos' speed limit
+    /// trims the knee's peak a little). Faster gaits saturated the servos for
+    /// much of the swing and stumbled. Walking backwards scuffs the feet unless
+    /// they lift at least about 2 cm.
     fn default() -> Self {
         let idle = GaitParams {
             step_length_m: 0.0,
-            step_height_m: 0.018,
-            period_s: 0.52,
+            step_height_m: 0.014,
+            period_s: 0.50,
             body_height_m: 0.105,
             stance_width_m: 0.012,
-            duty_factor: 0.56,
+            duty_factor: 0.55,
             foot_offset_m: 0.0,
         };
         Self {
             idle,
             fast_forwards: GaitParams {
-                step_length_m: 0.085,
-                step_height_m: 0.026,
-                period_s: 0.36,
-                duty_factor: 0.52,
+                step_length_m: 0.063,
+                step_height_m: 0.020,
+                period_s: 0.40,
+                duty_factor: 0.50,
                 foot_offset_m: 0.006,
                 ..idle
             },
             fast_backwards: GaitParams {
-                step_length_m: -0.07,
-                step_height_m: 0.024,
-                period_s: 0.42,
-                duty_factor: 0.54,
+                step_length_m: -0.062,
+                step_height_m: 0.022,
+                period_s: 0.46,
+                duty_factor: 0.50,
                 foot_offset_m: -0.004,
                 ..idle
             },

@@ -22,9 +22,11 @@ pub struct HeadingConfig {
 }
 
 impl Default for HeadingConfig {
+    /// A gain of 0.4 m/rad made the fast backwards walk weave and its speed
+    /// vary by 10-15 mm/s from second to second; 0.2 holds the line as well.
     fn default() -> Self {
         Self {
-            gain_m_per_rad: 0.4,
+            gain_m_per_rad: 0.2,
             max_steer_m: 0.02,
             line_gain: 1.0,
         }

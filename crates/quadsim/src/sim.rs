@@ -96,15 +96,15 @@ impl SimConfig {
                 ">= 0",
             ),
             (
-                "servo.max_torque",
-                self.servo.max_torque_nm,
-                self.servo.max_torque_nm > 0.0,
+                "servo.torque_scale",
+                self.servo.torque_scale,
+                self.servo.torque_scale > 0.0,
                 "> 0",
             ),
             (
-                "servo.max_speed",
-                self.servo.max_speed_rad_s,
-                self.servo.max_speed_rad_s > 0.0,
+                "servo.speed_scale",
+                self.servo.speed_scale,
+                self.servo.speed_scale > 0.0,
                 "> 0",
             ),
             (
@@ -192,6 +192,8 @@ pub struct QuadrupedSim {
     /// Per leg: abduction, hip, knee.
     joints: Vec<[MultibodyJointHandle; 3]>,
     torque_limits: Vec<[f64; 3]>,
+    /// Setpoint speed limits, rad/s, in the servos' order (leg by leg).
+    speed_limits: Vec<f64>,
     walk: WalkEngine,
     servos: ServoSetpoints,
     heading: HeadingKeeper,
@@ -300,6 +302,7 @@ impl QuadrupedSim {
         let head = body_of("head").ok_or_else(|| no_link("head"))?;
         let mut joints = Vec::new();
         let mut torque_limits = Vec::new();
+        let mut speed_limits = Vec::new();
         for leg in &description.legs {
             let mut h = Vec::new();
             for name in &leg.joints {
@@ -308,7 +311,8 @@ impl QuadrupedSim {
                 })?);
             }
             joints.push([h[0], h[1], h[2]]);
-            torque_limits.push(leg.effort_nm.map(|e| e.min(config.servo.max_torque_nm)));
+            torque_limits.push(leg.effort_nm.map(|e| e * config.servo.torque_scale));
+            speed_limits.extend(leg.velocity_rad_s.map(|v| v * config.servo.speed_scale));
         }
 
         let (t, rpy) = description.camera_in_head;
@@ -341,6 +345,7 @@ impl QuadrupedSim {
             camera_in_head,
             joints,
             torque_limits,
+            speed_limits,
             walk,
             servos: ServoSetpoints::new(initial_angles.clone()),
             heading: HeadingKeeper::default(),
@@ -512,8 +517,7 @@ impl QuadrupedSim {
                 [t.map(|a| a.abduction), t.map(|a| a.hip), t.map(|a| a.knee)]
             })
             .collect();
-        self.servos
-            .track(&flat, period, self.config.servo.max_speed_rad_s);
+        self.servos.track(&flat, period, &self.speed_limits);
         self.apply_servos();
     }
 

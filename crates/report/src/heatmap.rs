@@ -282,7 +282,7 @@ pub fn write_sweep_heatmaps(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use testbed::experiment::Figures;
+    use testbed::summary::Figures;
 
     fn summary() -> (Vec<String>, Vec<CombinationSummary>) {
         let keys: Vec<String> = ["learner.gamma", "learner.t_start", "learner.beta"]
@@ -302,6 +302,7 @@ mod tests {
                             ("learner.beta".into(), b.into()),
                         ],
                         runs_ok: usize::from(!(g == "0.99" && b == "0.1")),
+                        runs_failed: usize::from(g == "0.99" && b == "0.1"),
                         mean,
                         std: Figures::filled(0.0),
                     });

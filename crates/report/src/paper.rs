@@ -7,8 +7,8 @@ use plotters::chart::SeriesLabelPosition;
 use plotters::style::RGBColor;
 use scasm::Polynomial;
 use testbed::demos::{CONSTANT_COMMAND, DemoRun, Demos};
-use testbed::experiment::MeasuredModels;
 use testbed::metrics;
+use testbed::reference::MeasuredModels;
 use testbed::trial::{TraceRow, TrialOutcome};
 
 use crate::ReportError;
@@ -237,9 +237,9 @@ fn fig6(trial: &TrialOutcome) -> Figure {
 
 fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
     let a = trial.action_model?;
-    let reference: Vec<(f64, f64)> = measured.action.iter().map(|m| (m.0, m.1)).collect();
+    let reference = measured.reference().action;
     let k = metrics::action_error(&a, &reference).scale;
-    let (lo, hi) = span(measured.action.iter().map(|m| m.0));
+    let (lo, hi) = span(measured.action.iter().map(|m| m.command));
     Some(Figure {
         stem: "fig7a",
         chart: Chart {
@@ -249,7 +249,7 @@ fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
             series: vec![
                 Series::new(
                     "measured (stopwatch, +- 1 std)",
-                    Mark::ErrorBars(measured.action.iter().map(|m| m.2).collect()),
+                    Mark::ErrorBars(measured.action.iter().map(|m| m.std_mm_s).collect()),
                     colours::BLUE,
                     reference,
                 ),
@@ -267,9 +267,9 @@ fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
 
 fn fig7b(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
     let s = trial.sensor_model?;
-    let reference: Vec<(f64, f64)> = measured.sensor.iter().map(|m| (m.0, m.1)).collect();
+    let reference = measured.reference().sensor;
     let fit = metrics::sensor_error(&s, &reference);
-    let (lo, hi) = span(measured.sensor.iter().map(|m| m.1));
+    let (lo, hi) = span(measured.sensor.iter().map(|m| m.obs_px));
     Some(Figure {
         stem: "fig7b",
         chart: Chart {
@@ -284,7 +284,11 @@ fn fig7b(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
                     "measured (tape measure)",
                     Mark::Dot,
                     colours::BLUE,
-                    measured.sensor.iter().map(|m| (m.1, m.0)).collect(),
+                    measured
+                        .sensor
+                        .iter()
+                        .map(|m| (m.obs_px, m.distance_mm))
+                        .collect(),
                 ),
                 Series::new(
                     "learned",
@@ -308,7 +312,7 @@ fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {
 /// (trials without that model at that time are left out).
 fn over_trials(
     trials: &[TrialOutcome],
-    get: impl Fn(&testbed::trial::Judgement) -> Option<f64>,
+    get: impl Fn(&testbed::reference::Judgement) -> Option<f64>,
 ) -> Vec<(f64, f64, f64)> {
     let n = trials.iter().map(|t| t.over_time.len()).max().unwrap_or(0);
     (0..n)

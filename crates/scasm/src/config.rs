@@ -1,5 +1,6 @@
 //! The learner's hyper-parameters: [`ScasmConfig`] as written by a user (defaults
-//! are the paper's), checked once into [`ScasmParams`] which code can trust.
+//! are the paper's constants, except the sensor fit's reading window, which the
+//! paper does not have), checked once into [`ScasmParams`] which code can trust.
 
 use crate::MAX_REGRESSORS;
 use crate::error::ConfigError;
@@ -112,7 +113,9 @@ impl ScasmConfig {
     }
 }
 
-/// Checked hyper-parameters: every value is in range. The default is the paper's.
+/// Checked hyper-parameters: every value is in range. The default is
+/// [`ScasmConfig::default`]: the paper's constants with a reading window of 5
+/// (the paper's algorithm has 1: [`ScasmConfig::paper`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(
     feature = "serde",

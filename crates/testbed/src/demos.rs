@@ -6,7 +6,9 @@
 use scasm::{CalibrationLearner, Mode, Polynomial, Scasm};
 
 use crate::behaviour::{ConstantWalk, Phase};
-use crate::experiment::{MeasuredModels, Scenario, behaviour_for};
+use crate::experiment::behaviour_for;
+use crate::reference::MeasuredModels;
+use crate::scenario::Scenario;
 use crate::trial::{TraceRow, TrialConfig, TrialError, TrialRunner};
 
 /// The command of the constant walk (Fig. 2a).
@@ -61,7 +63,7 @@ pub fn run_demos(
         judge_every_s: MAX_DEMO_S,
     };
 
-    let far_m = models.sensor.last().map_or(3.6, |s| s.0 / 1000.0);
+    let far_m = models.sensor.last().map_or(3.6, |s| s.distance_mm / 1000.0);
     let mut walk_sim = scenario.sim;
     walk_sim.start_distance_m = far_m + CONSTANT_WALK_LEAD_M;
     let walk = ConstantWalk {

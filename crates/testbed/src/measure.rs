@@ -1,11 +1,19 @@
 //! Measuring the true models as the paper did (section VII), from the physics
-//! alone: a stopwatch on the walking robot, and (later) readings at marked
-//! distances. These are the references the learned models are judged against.
+//! alone: a stopwatch on the walking robot, and readings taken standing at
+//! marked distances. These are the references the learned models are judged
+//! against.
 
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
 use rayon::prelude::*;
 
 /// The stopwatch protocol's settings.
+///
+/// Each command is timed across `distance_m` five times in a row, after the gait
+/// has settled at it. Half a metre is at least four gait cycles at every
+/// command, so where in its cycle the gait is when the watch starts or stops
+/// matters little: the timings of a command agree within a few mm/s. Forwards
+/// commands start far from the beacon and backwards ones near it, so that the
+/// whole walk (about 3.3 m at the fastest) stays in sight of the beacon.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StopwatchConfig {
     /// Standing still before the command is given, s.
@@ -19,22 +27,28 @@ pub struct StopwatchConfig {
     /// A timing that has not covered the distance by then ends with the distance
     /// covered so far, s (for commands that barely move the robot).
     pub max_timing_s: f64,
+    /// Where a forwards (or zero) command starts, m from the beacon.
+    pub forwards_start_m: f64,
+    /// Where a backwards command starts, m from the beacon.
+    pub backwards_start_m: f64,
 }
 
 impl Default for StopwatchConfig {
     fn default() -> Self {
         Self {
             stand_s: 1.0,
-            settle_s: 2.0,
-            distance_m: 0.25,
+            settle_s: 3.0,
+            distance_m: 0.5,
             repeats: 5,
-            max_timing_s: 6.0,
+            max_timing_s: 4.0,
+            forwards_start_m: 4.2,
+            backwards_start_m: 1.0,
         }
     }
 }
 
 /// One command's measured velocity.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MeasuredVelocity {
     /// The walk command.
     pub command: f64,
@@ -42,20 +56,41 @@ pub struct MeasuredVelocity {
     pub velocity_mm_s: f64,
     /// Standard deviation over the timings, mm/s.
     pub std_mm_s: f64,
+    /// Each timing's velocity, mm/s.
+    pub timings_mm_s: Vec<f64>,
     /// Whether the robot stayed upright (torso up-vector z > 0.8) throughout.
     pub upright: bool,
 }
 
+/// Mean and population standard deviation.
+fn mean_std(values: &[f64]) -> (f64, f64) {
+    let n = values.len().max(1) as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
+    (mean, var.sqrt())
+}
+
 /// Times the robot at `command`: after standing and settling, it is timed `repeats`
-/// times across `distance_m` (or for `max_timing_s` if slower).
+/// times in a row across `distance_m` (or for `max_timing_s` if slower).
 pub fn time_command(
     description: &RobotDescription,
     sim_config: SimConfig,
     stopwatch: &StopwatchConfig,
     command: f64,
 ) -> Result<MeasuredVelocity, SimError> {
-    let mut sim = QuadrupedSim::new(description, sim_config)?;
-    let dt = sim_config.dt_s;
+    let start_distance_m = if command >= 0.0 {
+        stopwatch.forwards_start_m
+    } else {
+        stopwatch.backwards_start_m
+    };
+    let mut sim = QuadrupedSim::new(
+        description,
+        SimConfig {
+            start_distance_m,
+            ..sim_config
+        },
+    )?;
+    let dt = sim.config().dt_s;
     let mut upright = true;
     let run = |sim: &mut QuadrupedSim, seconds: f64, upright: &mut bool| {
         let n = (seconds / dt).round() as u64;
@@ -67,7 +102,7 @@ pub fn time_command(
     run(&mut sim, stopwatch.stand_s, &mut upright);
     sim.set_command(command)?;
     run(&mut sim, stopwatch.settle_s, &mut upright);
-    let mut velocities = Vec::with_capacity(stopwatch.repeats);
+    let mut timings_mm_s = Vec::with_capacity(stopwatch.repeats);
     for _ in 0..stopwatch.repeats {
         let (start_d, start_t) = (sim.distance_along_line_m(), sim.time_s());
         loop {
@@ -76,27 +111,32 @@ pub fn time_command(
             let covered = start_d - sim.distance_along_line_m();
             let elapsed = sim.time_s() - start_t;
             if covered.abs() >= stopwatch.distance_m || elapsed >= stopwatch.max_timing_s {
-                velocities.push(1000.0 * covered / elapsed);
+                timings_mm_s.push(1000.0 * covered / elapsed);
                 break;
             }
         }
     }
-    let n = velocities.len() as f64;
-    let mean = velocities.iter().sum::<f64>() / n;
-    let std = (velocities.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let (velocity_mm_s, std_mm_s) = mean_std(&timings_mm_s);
     Ok(MeasuredVelocity {
         command,
-        velocity_mm_s: mean,
-        std_mm_s: std,
+        velocity_mm_s,
+        std_mm_s,
+        timings_mm_s,
         upright,
     })
 }
 
 /// The stand-and-read protocol's result at one distance.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MeasuredReading {
-    /// Distance from the beacon, mm (torso centre, along the line).
+    /// Where the robot was put, mm from the beacon (torso centre, along the line).
+    pub nominal_mm: f64,
+    /// Where it actually was while it read: the ground-truth distance at each
+    /// reading, averaged, mm. Stepping in place creeps a little, so this is the
+    /// point's label, not the nominal distance.
     pub distance_mm: f64,
+    /// Standard deviation of the distance over the readings, mm.
+    pub distance_std_mm: f64,
     /// Mean of the readings, px.
     pub obs_px: f64,
     /// Their standard deviation, px.
@@ -110,22 +150,33 @@ pub fn paper_distances_m() -> Vec<f64> {
     (0..13).map(|k| 1.2 + 0.2 * f64::from(k)).collect()
 }
 
-/// Stands the robot (idle gait) at `distance_m` and averages `readings` camera
-/// readings, after `settle_s` of standing.
+/// Stands the robot at `distance_m`, stepping in place with `hold_command`, and
+/// averages `readings` camera readings after `settle_s`, each labelled with the
+/// distance the robot had when it was taken. `noise_seed` seeds the camera's
+/// noise, so that each distance gets its own noise rather than all sharing one
+/// offset.
 pub fn read_at(
     description: &RobotDescription,
     sim_config: SimConfig,
     distance_m: f64,
     readings: usize,
     settle_s: f64,
+    noise_seed: u64,
+    hold_command: f64,
 ) -> Result<MeasuredReading, SimError> {
-    let config = SimConfig {
+    let mut config = SimConfig {
         start_distance_m: distance_m,
         ..sim_config
     };
+    config.camera.noise_seed = noise_seed;
     let mut sim = QuadrupedSim::new(description, config)?;
+    sim.set_command(hold_command)?;
     sim.advance(settle_s);
-    let (mut obs, mut missed) = (Vec::with_capacity(readings), 0);
+    let (mut obs, mut at_mm, mut missed) = (
+        Vec::with_capacity(readings),
+        Vec::with_capacity(readings),
+        0,
+    );
     // Bounded: a beacon that is never seen must not hang the protocol.
     let max_frames = 4 * readings;
     let mut frames = 0;
@@ -134,33 +185,73 @@ pub fn read_at(
         if let Some(f) = sim.take_frame() {
             frames += 1;
             match f.obs_px {
-                Ok(o) => obs.push(o),
+                Ok(o) => {
+                    obs.push(o);
+                    at_mm.push(1000.0 * sim.distance_along_line_m());
+                }
                 Err(_) => missed += 1,
             }
         }
     }
-    let n = obs.len().max(1) as f64;
-    let mean = obs.iter().sum::<f64>() / n;
-    let std = (obs.iter().map(|o| (o - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let (obs_px, std_px) = mean_std(&obs);
+    let (distance_mm, distance_std_mm) = mean_std(&at_mm);
     Ok(MeasuredReading {
-        distance_mm: 1000.0 * distance_m,
-        obs_px: if obs.is_empty() { f64::NAN } else { mean },
-        std_px: std,
+        nominal_mm: 1000.0 * distance_m,
+        distance_mm: if obs.is_empty() {
+            f64::NAN
+        } else {
+            distance_mm
+        },
+        distance_std_mm,
+        obs_px: if obs.is_empty() { f64::NAN } else { obs_px },
+        std_px,
         missed,
     })
 }
 
-/// The stand-and-read protocol at every distance, in parallel, in the order given.
+/// The stand-and-read protocol at every distance, in parallel, in the order
+/// given; the camera noise at distance `k` is seeded `k`. The robot steps in
+/// place with `hold_command` (see [`hold_command`]).
 pub fn measure_sensor(
     description: &RobotDescription,
     sim_config: SimConfig,
     distances_m: &[f64],
     readings: usize,
+    hold_command: f64,
 ) -> Result<Vec<MeasuredReading>, SimError> {
     distances_m
         .par_iter()
-        .map(|&d| read_at(description, sim_config, d, readings, 1.0))
+        .enumerate()
+        .map(|(k, &d)| {
+            read_at(
+                description,
+                sim_config,
+                d,
+                readings,
+                1.0,
+                k as u64,
+                hold_command,
+            )
+        })
         .collect()
+}
+
+/// The command at which the robot steps in place without creeping: where the
+/// measured velocity crosses zero (linear between the two commands around it),
+/// or 0 if it never does. The idle gait (command 0) creeps forwards on most
+/// robots; stepping in place with this command keeps the robot where it was put
+/// while it reads, and keeps the head's bob, which spreads the quantised pixel
+/// extent into a smooth mean.
+pub fn hold_command(measured: &[MeasuredVelocity]) -> f64 {
+    let crossing = measured.windows(2).find_map(|w| {
+        let (a, b) = (&w[0], &w[1]);
+        let crosses = a.velocity_mm_s <= 0.0 && b.velocity_mm_s > 0.0;
+        crosses.then(|| {
+            let f = -a.velocity_mm_s / (b.velocity_mm_s - a.velocity_mm_s);
+            a.command + f * (b.command - a.command)
+        })
+    });
+    crossing.unwrap_or(0.0)
 }
 
 /// The paper's 31 commands: every multiple of 20 in [-300, 300].

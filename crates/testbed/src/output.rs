@@ -5,7 +5,9 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::trial::{Judgement, TraceRow};
+use crate::measure::{MeasuredReading, MeasuredVelocity};
+use crate::reference::Judgement;
+use crate::trial::TraceRow;
 
 /// Writes `header` and `rows` to `path`: to `path.tmp`, then renamed into place,
 /// so that a reader never sees half a file.
@@ -26,21 +28,41 @@ pub fn write_csv(
     std::fs::rename(&tmp, path)
 }
 
-/// `measured_action.csv` in `dir`: `command,velocity_mm_s,std_mm_s`.
-pub fn write_measured_action(dir: &Path, rows: &[(f64, f64, f64)]) -> std::io::Result<()> {
+/// `measured_action.csv` in `dir`: `command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright`
+/// (the mean of the timings, their spread, and whether the robot stayed upright).
+pub fn write_measured_action(dir: &Path, rows: &[MeasuredVelocity]) -> std::io::Result<()> {
     write_csv(
         &dir.join("measured_action.csv"),
-        "command,velocity_mm_s,std_mm_s",
-        rows.iter().map(|(c, v, s)| format!("{c},{v},{s}")),
+        "command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright",
+        rows.iter().map(|m| {
+            let t = &m.timings_mm_s;
+            format!(
+                "{},{},{},{},{},{}",
+                m.command,
+                m.velocity_mm_s,
+                m.std_mm_s,
+                t.iter().copied().fold(f64::INFINITY, f64::min),
+                t.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                m.upright
+            )
+        }),
     )
 }
 
-/// `measured_sensor.csv` in `dir`: `distance_mm,obs_px,std_px`.
-pub fn write_measured_sensor(dir: &Path, rows: &[(f64, f64, f64)]) -> std::io::Result<()> {
+/// `measured_sensor.csv` in `dir`:
+/// `distance_mm,obs_px,std_px,nominal_mm,distance_std_mm,missed` (the distance
+/// actually held while reading, the readings' mean and spread, where the robot
+/// was put, how far it moved, and frames without a reading).
+pub fn write_measured_sensor(dir: &Path, rows: &[MeasuredReading]) -> std::io::Result<()> {
     write_csv(
         &dir.join("measured_sensor.csv"),
-        "distance_mm,obs_px,std_px",
-        rows.iter().map(|(d, o, s)| format!("{d},{o},{s}")),
+        "distance_mm,obs_px,std_px,nominal_mm,distance_std_mm,missed",
+        rows.iter().map(|r| {
+            format!(
+                "{},{},{},{},{},{}",
+                r.distance_mm, r.obs_px, r.std_px, r.nominal_mm, r.distance_std_mm, r.missed
+            )
+        }),
     )
 }
 

@@ -5,9 +5,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use crate::experiment::{Figures, Scenario, SettingError};
 use crate::output;
-use crate::trial::TrialOutcome;
+use crate::scenario::{Scenario, SettingError};
+use crate::summary::{Aggregate, Figures, TrialStatus};
 
 /// A sweep that cannot be set up or read back.
 #[derive(Debug, thiserror::Error)]
@@ -201,6 +201,9 @@ fn metric_values(f: &Figures) -> [f64; 7] {
     ]
 }
 
+/// A combination's settings and its runs' `(seed, status, figures)`.
+type Combination = (Vec<(String, String)>, Vec<(u64, TrialStatus, Figures)>);
+
 /// One combination's figures over its seeds.
 #[derive(Debug, Clone, PartialEq)]
 pub struct CombinationSummary {
@@ -208,6 +211,8 @@ pub struct CombinationSummary {
     pub settings: Vec<(String, String)>,
     /// Runs that finished `ok`.
     pub runs_ok: usize,
+    /// Runs that did not (fell, no model, diverged, error): not in the means.
+    pub runs_failed: usize,
     /// Mean over those runs (NaN if none).
     pub mean: Figures,
     /// Standard deviation over those runs (NaN if none).
@@ -221,8 +226,8 @@ pub struct Row {
     pub run: Run,
     /// Its figures (NaN where a model was never learned or diverged).
     pub figures: Figures,
-    /// `ok`, `no model`, `diverged` or `error: ...` (see [`status_of`]).
-    pub status: String,
+    /// How the run ended; only `ok` runs enter a combination's means.
+    pub status: TrialStatus,
 }
 
 /// The sweep's results, kept whole in memory and written whole to `sweep.csv`.
@@ -275,7 +280,7 @@ impl Results {
                     r.run.settings.iter().map(|(_, v)| v.clone()).collect();
                 cells.push(r.run.seed.to_string());
                 cells.extend(metric_values(&r.figures).iter().map(|v| v.to_string()));
-                cells.push(r.status.replace(',', ";"));
+                cells.push(r.status.to_string().replace(',', ";"));
                 cells.join(",")
             }),
         )
@@ -343,7 +348,7 @@ impl Results {
             results.insert(Row {
                 run: Run { settings, seed },
                 figures,
-                status: cells[cells.len() - 1].to_string(),
+                status: TrialStatus::parse(cells[cells.len() - 1]),
             });
         }
         Ok(Some(results))
@@ -352,41 +357,37 @@ impl Results {
     /// Mean and standard deviation per combination, over its runs that finished
     /// `ok`.
     pub fn summary(&self) -> Vec<CombinationSummary> {
-        let mut groups: BTreeMap<String, CombinationSummary> = BTreeMap::new();
-        let mut figures: BTreeMap<String, Vec<Figures>> = BTreeMap::new();
+        let mut groups: BTreeMap<String, Combination> = BTreeMap::new();
         for r in self.rows.values() {
-            let key = r.run.combination_key();
             groups
-                .entry(key.clone())
-                .or_insert_with(|| CombinationSummary {
-                    settings: r.run.settings.clone(),
-                    runs_ok: 0,
-                    mean: Figures::filled(f64::NAN),
-                    std: Figures::filled(f64::NAN),
-                });
-            let f = figures.entry(key).or_default();
-            if r.status == "ok" {
-                f.push(r.figures);
-            }
+                .entry(r.run.combination_key())
+                .or_insert_with(|| (r.run.settings.clone(), Vec::new()))
+                .1
+                .push((r.run.seed, r.status.clone(), r.figures));
         }
         groups
-            .into_iter()
-            .map(|(key, mut g)| {
-                let f = &figures[&key];
-                if !f.is_empty() {
-                    (g.runs_ok, g.mean, g.std) = (f.len(), Figures::mean(f), Figures::std(f));
+            .into_values()
+            .map(|(settings, trials)| {
+                let a = Aggregate::of(&trials);
+                CombinationSummary {
+                    settings,
+                    runs_ok: a.ok(),
+                    runs_failed: a.failed.len(),
+                    mean: a.mean,
+                    std: a.std,
                 }
-                g
             })
             .collect()
     }
 
     /// Writes `sweep_summary.csv` into `dir`, whole: per combination, the number
-    /// of runs that finished ok and each metric's mean and std.
+    /// of runs that finished ok and that did not, and each metric's mean and
+    /// std over the ok ones.
     pub fn write_summary(&self, dir: &Path) -> Result<(), SweepError> {
         let path = dir.join("sweep_summary.csv");
         let mut h: Vec<String> = self.keys.clone();
         h.push("runs_ok".into());
+        h.push("runs_failed".into());
         for m in METRICS {
             h.push(format!("{m}_mean"));
             h.push(format!("{m}_std"));
@@ -397,6 +398,7 @@ impl Results {
             self.summary().into_iter().map(|g| {
                 let mut cells: Vec<String> = g.settings.into_iter().map(|(_, v)| v).collect();
                 cells.push(g.runs_ok.to_string());
+                cells.push(g.runs_failed.to_string());
                 for (m, s) in metric_values(&g.mean).iter().zip(metric_values(&g.std)) {
                     cells.push(m.to_string());
                     cells.push(s.to_string());
@@ -429,21 +431,5 @@ fn file_error(path: &Path, e: std::io::Error) -> SweepError {
     SweepError::File {
         path: path.display().to_string(),
         reason: e.to_string(),
-    }
-}
-
-/// A finished trial's status: `ok`, `no model` (one was never determined by
-/// the data), or `diverged` (a model exists but its error is not finite).
-pub fn status_of(outcome: &TrialOutcome) -> String {
-    let j = &outcome.last;
-    if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
-        "no model".into()
-    } else if [j.action_rmse_mm_s, j.sensor_rmse_mm, j.consistency]
-        .iter()
-        .all(|v| v.is_some_and(f64::is_finite))
-    {
-        "ok".into()
-    } else {
-        "diverged".into()
     }
 }

@@ -8,7 +8,7 @@ use rand::Rng;
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
 use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
-use crate::metrics;
+use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
 
 /// What went wrong in a trial.
@@ -37,48 +37,6 @@ pub struct TrialConfig {
     pub behaviour: BehaviourConfig,
     /// How often the learned models are judged during the trial, s (Fig. 8).
     pub judge_every_s: f64,
-}
-
-/// The reference the learned models are judged against: the measured models.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Reference {
-    /// `(command, velocity mm/s)` by the stopwatch protocol.
-    pub action: Vec<(f64, f64)>,
-    /// `(distance mm, reading px)` by the stand-and-read protocol.
-    pub sensor: Vec<(f64, f64)>,
-}
-
-/// The learned models' errors at one moment.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Judgement {
-    /// When, s.
-    pub t_s: f64,
-    /// Action RMSE after the best scale, mm/s.
-    pub action_rmse_mm_s: Option<f64>,
-    /// Sensor RMSE after the best affine map, mm.
-    pub sensor_rmse_mm: Option<f64>,
-    /// `| |k / b| - 1 |`.
-    pub consistency: Option<f64>,
-}
-
-impl Reference {
-    /// Judges a learner's current models.
-    pub fn judge(&self, t_s: f64, learner: &dyn CalibrationLearner) -> Judgement {
-        let a = learner
-            .action_model()
-            .map(|m| metrics::action_error(&m, &self.action));
-        let s = learner
-            .sensor_model()
-            .map(|m| metrics::sensor_error(&m, &self.sensor));
-        Judgement {
-            t_s,
-            action_rmse_mm_s: a.map(|e| e.rmse),
-            sensor_rmse_mm: s.map(|e| e.rmse),
-            consistency: a
-                .zip(s)
-                .map(|(a, s)| metrics::consistency(a.scale, s.scale)),
-        }
-    }
 }
 
 /// One row of a trial's trace: one camera frame.

@@ -1,0 +1,217 @@
+//! The yardstick: the robot's true models, measured by the paper's protocols
+//! (section VII) and cached on disk, and the judging of learned models against
+//! them. Every accuracy figure the testbed reports is measured against these.
+
+use std::hash::{Hash, Hasher};
+use std::path::Path;
+
+use quadsim::SimError;
+use scasm::{CalibrationLearner, Polynomial};
+use serde::{Deserialize, Serialize};
+
+use crate::measure::{self, MeasuredReading, MeasuredVelocity, StopwatchConfig};
+use crate::metrics;
+use crate::scenario::Scenario;
+
+/// Readings per distance in the stand-and-read protocol (the paper's 100).
+pub const MEASURE_READINGS: usize = 100;
+
+/// Bumped whenever a protocol changes in a way its settings do not show, so
+/// that cached references measured the old way are measured again.
+const PROTOCOL_VERSION: u32 = 2;
+
+/// The measured models with their spreads, as the protocols give them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct MeasuredModels {
+    /// The stopwatch protocol at the 31 commands.
+    pub action: Vec<MeasuredVelocity>,
+    /// The stand-and-read protocol at the 13 distances.
+    pub sensor: Vec<MeasuredReading>,
+    /// Whether they came from the cache.
+    #[serde(skip)]
+    pub from_cache: bool,
+}
+
+impl MeasuredModels {
+    /// The reference for judging.
+    pub fn reference(&self) -> Reference {
+        Reference {
+            action: self
+                .action
+                .iter()
+                .map(|m| (m.command, m.velocity_mm_s))
+                .collect(),
+            sensor: self
+                .sensor
+                .iter()
+                .map(|r| (r.distance_mm, r.obs_px))
+                .collect(),
+        }
+    }
+
+    /// Fastest forwards minus fastest backwards velocity, mm/s.
+    pub fn velocity_range_mm_s(&self) -> f64 {
+        span(self.action.iter().map(|m| m.velocity_mm_s))
+    }
+
+    /// Farthest minus nearest measured distance, mm.
+    pub fn distance_range_mm(&self) -> f64 {
+        span(self.sensor.iter().map(|r| r.distance_mm))
+    }
+
+    /// The largest standard deviation of the five timings of any command, mm/s.
+    pub fn worst_velocity_std_mm_s(&self) -> f64 {
+        self.action.iter().map(|m| m.std_mm_s).fold(0.0, f64::max)
+    }
+
+    /// The largest standard deviation of the readings at any distance, px.
+    pub fn worst_reading_std_px(&self) -> f64 {
+        self.sensor.iter().map(|r| r.std_px).fold(0.0, f64::max)
+    }
+
+    /// One line saying how the reference was taken and how tight it is.
+    pub fn describe(&self) -> String {
+        let s = StopwatchConfig::default();
+        format!(
+            "reference: stopwatch at {} commands, {} timings of {} m each after {} s of walking \
+             (std <= {:.1} mm/s); {} readings standing at each of {} distances, labelled by the \
+             distance actually held (std <= {:.2} px)",
+            self.action.len(),
+            s.repeats,
+            s.distance_m,
+            s.settle_s,
+            self.worst_velocity_std_mm_s(),
+            MEASURE_READINGS,
+            self.sensor.len(),
+            self.worst_reading_std_px(),
+        )
+    }
+}
+
+fn span(values: impl Iterator<Item = f64>) -> f64 {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    hi - lo
+}
+
+/// A key identifying what the measured reference of `scenario` depends on
+/// (robot, world, controllers, camera and the protocols; not the learner).
+pub fn key(scenario: &Scenario) -> String {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    scenario.urdf_text.hash(&mut h);
+    format!("{:?}", scenario.sim).hash(&mut h);
+    format!("{:?}", StopwatchConfig::default()).hash(&mut h);
+    MEASURE_READINGS.hash(&mut h);
+    PROTOCOL_VERSION.hash(&mut h);
+    format!("{:016x}", h.finish())
+}
+
+/// The measured models as stored in the cache.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct CachedReference {
+    key: String,
+    models: MeasuredModels,
+}
+
+/// Measures the reference models of `scenario`, or reads them from `cache_dir`
+/// if they were measured before for the same robot, world and protocols.
+pub fn measured_models(
+    scenario: &Scenario,
+    cache_dir: Option<&Path>,
+) -> Result<MeasuredModels, SimError> {
+    let key = key(scenario);
+    let path = cache_dir.map(|d| d.join(format!("reference-{key}.json")));
+    if let Some(p) = &path {
+        let cached = std::fs::read_to_string(p)
+            .ok()
+            .and_then(|text| serde_json::from_str::<CachedReference>(&text).ok());
+        if let Some(c) = cached.filter(|c| c.key == key) {
+            return Ok(MeasuredModels {
+                from_cache: true,
+                ..c.models
+            });
+        }
+    }
+    let action = measure::measure_action(
+        &scenario.description,
+        scenario.sim,
+        &StopwatchConfig::default(),
+        &measure::paper_commands(),
+    )?;
+    let sensor = measure::measure_sensor(
+        &scenario.description,
+        scenario.sim,
+        &measure::paper_distances_m(),
+        MEASURE_READINGS,
+        measure::hold_command(&action),
+    )?;
+    let models = MeasuredModels {
+        action,
+        sensor,
+        from_cache: false,
+    };
+    if let Some(p) = &path {
+        // A cache that cannot be written costs only time, never the run.
+        let cached = CachedReference {
+            key,
+            models: models.clone(),
+        };
+        if let Ok(text) = serde_json::to_string(&cached) {
+            let _ = p.parent().map(std::fs::create_dir_all);
+            let tmp = p.with_extension("json.tmp");
+            if std::fs::write(&tmp, text).is_ok() {
+                let _ = std::fs::rename(&tmp, p);
+            }
+        }
+    }
+    Ok(models)
+}
+
+/// The reference the learned models are judged against: the measured models.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    /// `(command, velocity mm/s)` by the stopwatch protocol.
+    pub action: Vec<(f64, f64)>,
+    /// `(distance mm, reading px)` by the stand-and-read protocol.
+    pub sensor: Vec<(f64, f64)>,
+}
+
+/// The learned models' errors at one moment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Judgement {
+    /// When, s.
+    pub t_s: f64,
+    /// Action RMSE after the best scale, mm/s.
+    pub action_rmse_mm_s: Option<f64>,
+    /// Sensor RMSE after the best affine map, mm.
+    pub sensor_rmse_mm: Option<f64>,
+    /// `| |k / b| - 1 |`.
+    pub consistency: Option<f64>,
+}
+
+impl Reference {
+    /// Judges a pair of models.
+    pub fn judge_models(
+        &self,
+        t_s: f64,
+        action: Option<Polynomial>,
+        sensor: Option<Polynomial>,
+    ) -> Judgement {
+        let a = action.map(|m| metrics::action_error(&m, &self.action));
+        let s = sensor.map(|m| metrics::sensor_error(&m, &self.sensor));
+        Judgement {
+            t_s,
+            action_rmse_mm_s: a.map(|e| e.rmse),
+            sensor_rmse_mm: s.map(|e| e.rmse),
+            consistency: a
+                .zip(s)
+                .map(|(a, s)| metrics::consistency(a.scale, s.scale)),
+        }
+    }
+
+    /// Judges a learner's current models.
+    pub fn judge(&self, t_s: f64, learner: &dyn CalibrationLearner) -> Judgement {
+        self.judge_models(t_s, learner.action_model(), learner.sensor_model())
+    }
+}

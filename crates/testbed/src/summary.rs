@@ -1,0 +1,278 @@
+//! The figures of a trial, and of many: how each trial ended, and the mean and
+//! spread over the trials that ended well, with every failed trial counted and
+//! named rather than dropped.
+
+use scasm::{Polynomial, ScasmConfig};
+use serde::{Deserialize, Serialize};
+
+use crate::metrics;
+use crate::reference::Reference;
+use crate::trial::TrialOutcome;
+
+/// Figures of one trial, as `summary.json` has them.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Figures {
+    /// Learned action model's RMSE after the best scale, mm/s.
+    pub action_rmse_mm_s: f64,
+    /// Learned sensor model's RMSE after the best affine map, mm.
+    pub sensor_rmse_mm: f64,
+    /// Best quartic through the measured action model, mm/s.
+    pub action_best_rmse_mm_s: f64,
+    /// Best cubic through the measured sensor model, mm.
+    pub sensor_best_rmse_mm: f64,
+    /// The identity model A0 after its best scale, mm/s.
+    pub action_a0_rmse_mm_s: f64,
+    /// `| |k / b| - 1 |`.
+    pub consistency: f64,
+    /// Simulated seconds per wall-clock second.
+    pub realtime_factor: f64,
+}
+
+/// The best possible figures for a reference (independent of the trial).
+pub fn best_possible(reference: &Reference, learner: &ScasmConfig) -> (f64, f64, f64) {
+    let s: Vec<(f64, f64)> = reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
+    (
+        metrics::best_polynomial_rmse(&reference.action, learner.action_degree).unwrap_or(f64::NAN),
+        metrics::best_polynomial_rmse(&s, learner.sensor_degree).unwrap_or(f64::NAN),
+        metrics::action_error(&Polynomial::identity(), &reference.action).rmse,
+    )
+}
+
+impl Figures {
+    /// The figures of a finished trial (NaN where a model was never learned).
+    pub fn of(outcome: &TrialOutcome, best: (f64, f64, f64)) -> Self {
+        Self {
+            action_rmse_mm_s: outcome.last.action_rmse_mm_s.unwrap_or(f64::NAN),
+            sensor_rmse_mm: outcome.last.sensor_rmse_mm.unwrap_or(f64::NAN),
+            action_best_rmse_mm_s: best.0,
+            sensor_best_rmse_mm: best.1,
+            action_a0_rmse_mm_s: best.2,
+            consistency: outcome.last.consistency.unwrap_or(f64::NAN),
+            realtime_factor: outcome.realtime_factor,
+        }
+    }
+
+    fn map(values: &[Self], f: impl Fn(&[f64]) -> f64) -> Self {
+        let field = |g: fn(&Self) -> f64| f(&values.iter().map(g).collect::<Vec<_>>());
+        Self {
+            action_rmse_mm_s: field(|x| x.action_rmse_mm_s),
+            sensor_rmse_mm: field(|x| x.sensor_rmse_mm),
+            action_best_rmse_mm_s: field(|x| x.action_best_rmse_mm_s),
+            sensor_best_rmse_mm: field(|x| x.sensor_best_rmse_mm),
+            action_a0_rmse_mm_s: field(|x| x.action_a0_rmse_mm_s),
+            consistency: field(|x| x.consistency),
+            realtime_factor: field(|x| x.realtime_factor),
+        }
+    }
+
+    /// Every field `value`.
+    pub fn filled(value: f64) -> Self {
+        Self {
+            action_rmse_mm_s: value,
+            sensor_rmse_mm: value,
+            action_best_rmse_mm_s: value,
+            sensor_best_rmse_mm: value,
+            action_a0_rmse_mm_s: value,
+            consistency: value,
+            realtime_factor: value,
+        }
+    }
+
+    /// Mean over trials, field by field.
+    pub fn mean(values: &[Self]) -> Self {
+        Self::map(values, |v| v.iter().sum::<f64>() / v.len() as f64)
+    }
+
+    /// Population standard deviation over trials, field by field.
+    pub fn std(values: &[Self]) -> Self {
+        Self::map(values, |v| {
+            let m = v.iter().sum::<f64>() / v.len() as f64;
+            (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
+        })
+    }
+
+    /// The paper's reported figures (15 trials on a Sony Aibo ERS-7).
+    pub fn paper() -> Self {
+        Self {
+            action_rmse_mm_s: 29.6,
+            sensor_rmse_mm: 70.4,
+            action_best_rmse_mm_s: 17.2,
+            sensor_best_rmse_mm: 48.8,
+            action_a0_rmse_mm_s: 43.0,
+            consistency: 0.08,
+            realtime_factor: f64::NAN,
+        }
+    }
+}
+
+/// How a trial ended. Only `Ok` trials enter a mean; every other one is counted
+/// and named in every report, so none silently drops out.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TrialStatus {
+    /// The robot stayed upright and both models were learned, with finite errors.
+    Ok,
+    /// The robot tipped over (its world is no longer the experiment's).
+    Fell,
+    /// A model was never determined by the data.
+    NoModel,
+    /// Both models exist but an error is not finite.
+    Diverged,
+    /// The trial could not run; the reason.
+    Error(String),
+}
+
+impl TrialStatus {
+    /// The status of a finished trial: a fall first, then a missing model, then
+    /// non-finite errors.
+    pub fn of(outcome: &TrialOutcome) -> Self {
+        let j = &outcome.last;
+        if outcome.fell {
+            Self::Fell
+        } else if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
+            Self::NoModel
+        } else if [j.action_rmse_mm_s, j.sensor_rmse_mm, j.consistency]
+            .iter()
+            .all(|v| v.is_some_and(f64::is_finite))
+        {
+            Self::Ok
+        } else {
+            Self::Diverged
+        }
+    }
+
+    /// Whether the trial counts in the means.
+    pub fn is_ok(&self) -> bool {
+        *self == Self::Ok
+    }
+
+    /// Reads back what [`Display`](std::fmt::Display) wrote.
+    pub fn parse(text: &str) -> Self {
+        match text {
+            "ok" => Self::Ok,
+            "fell" => Self::Fell,
+            "no model" => Self::NoModel,
+            "diverged" => Self::Diverged,
+            other => Self::Error(other.strip_prefix("error: ").unwrap_or(other).into()),
+        }
+    }
+}
+
+impl std::fmt::Display for TrialStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Ok => f.write_str("ok"),
+            Self::Fell => f.write_str("fell"),
+            Self::NoModel => f.write_str("no model"),
+            Self::Diverged => f.write_str("diverged"),
+            Self::Error(e) => write!(f, "error: {e}"),
+        }
+    }
+}
+
+/// Many trials' figures: mean and spread over the trials that ended `Ok`, and
+/// the others counted and named.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Aggregate {
+    /// Trials in all.
+    pub trials: usize,
+    /// Mean over the `Ok` trials (NaN if there are none).
+    pub mean: Figures,
+    /// Population standard deviation over the `Ok` trials (NaN if none).
+    pub std: Figures,
+    /// The trials that did not end `Ok`: seed and status.
+    pub failed: Vec<(u64, TrialStatus)>,
+}
+
+impl Aggregate {
+    /// Aggregates `(seed, status, figures)` per trial.
+    pub fn of(trials: &[(u64, TrialStatus, Figures)]) -> Self {
+        let ok: Vec<Figures> = trials.iter().filter(|t| t.1.is_ok()).map(|t| t.2).collect();
+        let (mean, std) = if ok.is_empty() {
+            (Figures::filled(f64::NAN), Figures::filled(f64::NAN))
+        } else {
+            (Figures::mean(&ok), Figures::std(&ok))
+        };
+        Self {
+            trials: trials.len(),
+            mean,
+            std,
+            failed: trials
+                .iter()
+                .filter(|t| !t.1.is_ok())
+                .map(|t| (t.0, t.1.clone()))
+                .collect(),
+        }
+    }
+
+    /// Trials that ended `Ok`.
+    pub fn ok(&self) -> usize {
+        self.trials - self.failed.len()
+    }
+
+    /// "15 of 15 trials ok", or "13 of 15 trials ok; not in the means: seed 3
+    /// (fell), seed 9 (no model)".
+    pub fn describe(&self) -> String {
+        let mut s = format!("{} of {} trials ok", self.ok(), self.trials);
+        if !self.failed.is_empty() {
+            let named: Vec<String> = self
+                .failed
+                .iter()
+                .map(|(seed, status)| format!("seed {seed} ({status})"))
+                .collect();
+            s.push_str(&format!("; not in the means: {}", named.join(", ")));
+        }
+        s
+    }
+
+    /// The failed trials as JSON: `[{"seed": 3, "status": "fell"}, ...]`.
+    pub fn failed_json(&self) -> serde_json::Value {
+        self.failed
+            .iter()
+            .map(|(seed, status)| serde_json::json!({"seed": seed, "status": status.to_string()}))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn figures(action: f64) -> Figures {
+        Figures {
+            action_rmse_mm_s: action,
+            ..Figures::filled(1.0)
+        }
+    }
+
+    #[test]
+    fn failed_trials_are_counted_named_and_kept_out_of_the_mean() {
+        let a = Aggregate::of(&[
+            (0, TrialStatus::Ok, figures(10.0)),
+            (1, TrialStatus::Fell, figures(1000.0)),
+            (2, TrialStatus::Ok, figures(20.0)),
+            (3, TrialStatus::NoModel, Figures::filled(f64::NAN)),
+        ]);
+        assert_eq!((a.trials, a.ok()), (4, 2));
+        assert_eq!(a.mean.action_rmse_mm_s, 15.0);
+        assert_eq!(
+            a.describe(),
+            "2 of 4 trials ok; not in the means: seed 1 (fell), seed 3 (no model)"
+        );
+        let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
+        assert!(none.mean.action_rmse_mm_s.is_nan());
+    }
+
+    #[test]
+    fn statuses_read_back_as_written() {
+        for s in [
+            TrialStatus::Ok,
+            TrialStatus::Fell,
+            TrialStatus::NoModel,
+            TrialStatus::Diverged,
+            TrialStatus::Error("the learner refused an event".into()),
+        ] {
+            assert_eq!(TrialStatus::parse(&s.to_string()), s);
+        }
+    }
+}
