@@ -13,11 +13,9 @@ use std::sync::Mutex;
 
 use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use testbed::experiment;
 use testbed::reference::MeasuredModels;
-use testbed::summary::{self, Figures, TrialStatus};
+use testbed::summary::{self, Figures};
 use testbed::sweep::{self, Axis, CombinationSummary, Results, Row};
 
 /// Sweep settings over a grid of values and seeds.
@@ -257,25 +255,35 @@ fn main() -> Result<()> {
         }
     }
 
-    let bar = ProgressBar::new(todo.len() as u64).with_style(
-        ProgressStyle::with_template("  [{elapsed_precise}] {bar:40} {pos}/{len} runs, eta {eta}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    // Runs that share a world (every run of a seed, when only the learner's
+    // settings vary) share one recording: the physics runs once per world.
+    let bar = scasm_testbed::progress_bar(todo.len() as u64, "runs");
+    let jobs: Vec<experiment::Job<'_>> = todo
+        .iter()
+        .map(|&i| experiment::Job {
+            scenario: &scenarios[i],
+            models: &references[&scenarios[i].reference_key()],
+            seed: runs[i].seed,
+            learner: &scenarios[i].learner_name,
+        })
+        .collect();
+    let worlds: std::collections::BTreeSet<String> = jobs
+        .iter()
+        .map(|j| experiment::world_key(j.scenario, j.seed))
+        .collect();
+    println!("{} distinct worlds to simulate", worlds.len());
     let shared = Mutex::new((results.clone(), None::<String>));
-    todo.par_iter().for_each(|&i| {
-        let (run, scenario) = (&runs[i], &scenarios[i]);
-        let models = &references[&scenario.reference_key()];
-        let best_possible = summary::best_possible(&models.reference(), &scenario.learner);
-        let (figures, status) = match experiment::run_one(scenario, models, run.seed) {
-            Ok((outcome, _)) => (
-                Figures::of(&outcome, best_possible),
-                TrialStatus::of(&outcome),
-            ),
-            Err(e) => (Figures::filled(f64::NAN), TrialStatus::Error(e.to_string())),
-        };
+    experiment::run_jobs(&jobs, &|k, result| {
+        let (i, job) = (todo[k], &jobs[k]);
+        let best_possible = summary::best_possible(&job.models.reference(), &job.scenario.learner);
+        let (_, status, figures) = summary::trial_row(
+            job.seed,
+            result.as_ref().map_err(|e| e.to_string()),
+            best_possible,
+        );
         if let Ok(mut guard) = shared.lock() {
             guard.0.insert(Row {
-                run: run.clone(),
+                run: runs[i].clone(),
                 figures,
                 status,
             });

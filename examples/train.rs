@@ -1,44 +1,36 @@
-//! The paper's experiment on the simulated robot: trials of SCASM learning the
-//! robot's action and sensor models at once, judged by the paper's protocol
-//! against the models measured by stopwatch and by standing at marked distances.
+//! The paper's experiment on the simulated robot: trials of a calibration
+//! learner (SCASM by default) learning the robot's action and sensor models at
+//! once, judged by the paper's protocol against the models measured by
+//! stopwatch and by standing at marked distances.
 //!
-//! Writes a run directory with summary.json, the measured models, per trial its
-//! trace and learned models, the section IV and V demonstrations, the paper's
-//! figures as PNG and SVG, and index.html showing them beside the results table.
+//! Writes a run directory: config.toml (every setting, to run it again),
+//! summary.json, the measured models, per trial its dataset (the recorded
+//! world, replayable by `replay`) and its learner's trace and models, the
+//! section IV and V demonstrations, the paper's figures as PNG and SVG, and
+//! index.html showing them beside the results table.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
 use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressStyle};
 use report::page::Page;
-use scasm::Polynomial;
+use scasm_testbed::{ScenarioArgs, TrialArgs};
+use testbed::dataset::{self, DatasetMeta};
 use testbed::demos::{Demos, run_demos};
 use testbed::experiment;
 use testbed::output;
-use testbed::scenario::LearningMode;
-use testbed::summary::{self, Aggregate, Figures, TrialStatus};
-use testbed::trial::TrialOutcome;
+use testbed::provenance::Provenance;
+use testbed::reference::{self, MeasuredModels};
+use testbed::scenario::Scenario;
+use testbed::summary::{self, Aggregate};
+use testbed::trial::{Recording, TrialOutcome};
 
-/// Run SCASM training trials on the simulated quadruped.
+/// Run calibration trials on the simulated quadruped (the paper's experiment).
 #[derive(Debug, Parser)]
 struct Args {
-    /// Number of trials (seeds 0..N); ignored if --seeds is given.
-    #[arg(long, default_value_t = 15)]
-    trials: u64,
-    /// Seeds as a range A..B (B excluded).
-    #[arg(long)]
-    seeds: Option<String>,
-    /// Trial length, s.
-    #[arg(long)]
-    duration: Option<f64>,
-    /// The learner (only `scasm` so far).
-    #[arg(long, default_value = "scasm")]
-    learner: String,
-    /// What is learned from what.
-    #[arg(long, value_enum, default_value = "simultaneous")]
-    mode: Mode,
+    #[command(flatten)]
+    trials: TrialArgs,
     /// Run directory (default: runs/train-<unix time>).
     #[arg(long)]
     out: Option<PathBuf>,
@@ -46,47 +38,24 @@ struct Args {
     #[arg(long, default_value = "runs/.cache")]
     cache: PathBuf,
     #[command(flatten)]
-    scenario: scasm_testbed::ScenarioArgs,
+    scenario: ScenarioArgs,
 }
 
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-enum Mode {
-    Simultaneous,
-    SensorFromAction,
-    ActionFromSensor,
-}
-
-fn parse_seeds(args: &Args) -> Result<Vec<u64>> {
-    match &args.seeds {
-        None => Ok((0..args.trials).collect()),
-        Some(s) => {
-            let (a, b) = s.split_once("..").context("--seeds must look like A..B")?;
-            let (a, b): (u64, u64) = (a.trim().parse()?, b.trim().parse()?);
-            ensure!(a < b, "--seeds {s} is empty");
-            Ok((a..b).collect())
-        }
-    }
-}
-
-fn write_models(path: &Path, action: Option<Polynomial>, sensor: Option<Polynomial>) -> Result<()> {
-    let models = serde_json::json!({
-        "action": action.map(|p| p.coeffs().to_vec()),
-        "sensor": sensor.map(|p| p.coeffs().to_vec()),
-    });
-    std::fs::write(path, serde_json::to_string_pretty(&models)?)?;
-    Ok(())
-}
-
-fn write_trial(dir: &Path, outcome: &TrialOutcome) -> Result<()> {
-    let dir = dir.join(format!("trial-{}", outcome.seed));
-    std::fs::create_dir_all(&dir)?;
-    output::write_trace(&dir.join("trace.csv"), &outcome.trace)?;
-    output::write_errors_over_time(&dir.join("errors_over_time.csv"), &outcome.over_time)?;
-    write_models(
-        &dir.join("models.json"),
-        outcome.action_model,
-        outcome.sensor_model,
-    )
+/// A trial's directory: its dataset and its learner's files.
+fn write_trial(
+    out: &Path,
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    made_by: &Provenance,
+    (recording, outcome): &(Recording, TrialOutcome),
+) -> std::io::Result<()> {
+    let dir = out.join(format!("trial-{}", recording.seed));
+    dataset::write(
+        &dir,
+        recording,
+        &DatasetMeta::new(scenario, models, recording, made_by),
+    )?;
+    output::write_learner_run(&dir, outcome)
 }
 
 fn write_demos(dir: &Path, demos: &Demos) -> Result<()> {
@@ -98,37 +67,29 @@ fn write_demos(dir: &Path, demos: &Demos) -> Result<()> {
         ("action_from_rough_sensor", &demos.action_from_rough_sensor),
     ] {
         output::write_trace(&dir.join(format!("{name}.csv")), &run.trace)?;
-        write_models(&dir.join(format!("{name}.json")), run.action, run.sensor)?;
+        output::write_models(&dir.join(format!("{name}.json")), run.action, run.sensor)?;
     }
     Ok(())
 }
+
 fn main() -> Result<()> {
     let args = Args::parse();
-    if args.learner != "scasm" {
-        bail!("unknown learner `{}`; available: scasm", args.learner);
+    if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref()) {
+        return Ok(());
     }
-    let seeds = parse_seeds(&args)?;
-    let mut scenario = args.scenario.scenario()?;
-    if let Some(d) = args.duration {
-        scenario.set(&format!("trial.duration={d}"))?;
-    }
-    scenario.mode = match args.mode {
-        Mode::Simultaneous => LearningMode::Simultaneous,
-        Mode::SensorFromAction => LearningMode::SensorFromAction,
-        Mode::ActionFromSensor => LearningMode::ActionFromSensor,
-    };
-    let out = args.out.clone().unwrap_or_else(|| {
-        let t = std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.as_secs())
-            .unwrap_or(0);
-        PathBuf::from(format!("runs/train-{t}"))
-    });
+    let scenario = args.scenario.scenario_with(&args.trials.settings())?;
+    let seeds: Vec<u64> = (scenario.seeds.0..scenario.seeds.1).collect();
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| scasm_testbed::default_out("train"));
     std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let made_by = Provenance::current();
+    output::write_config(&out, &scenario, &made_by)?;
     let started = std::time::Instant::now();
 
     println!("Measuring the robot's true models (stopwatch and stand-and-read protocols)...");
-    let models = testbed::reference::measured_models(&scenario, Some(&args.cache))?;
+    let models = reference::measured_models(&scenario, Some(&args.cache))?;
     println!(
         "  {} (cache key {})",
         if models.from_cache {
@@ -146,18 +107,14 @@ fn main() -> Result<()> {
         seeds.len(),
         scenario.duration_s,
         scenario.mode,
-        args.learner,
+        scenario.learner_name,
         rayon::current_num_threads()
     );
-    let bar = ProgressBar::new(seeds.len() as u64).with_style(
-        ProgressStyle::with_template(
-            "  [{elapsed_precise}] {bar:40} {pos}/{len} trials, eta {eta}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = scasm_testbed::progress_bar(seeds.len() as u64, "trials");
     let write_errors = Mutex::new(Vec::new());
-    let results = experiment::run_trials(&scenario, &models, &seeds, &|_, outcome| {
-        if let Some(e) = outcome.and_then(|o| write_trial(&out, o).err()) {
+    let results = experiment::run_trials(&scenario, &models, &seeds, &|_, done| {
+        if let Some(e) = done.and_then(|d| write_trial(&out, &scenario, &models, &made_by, d).err())
+        {
             if let Ok(mut v) = write_errors.lock() {
                 v.push(e.to_string());
             }
@@ -172,52 +129,35 @@ fn main() -> Result<()> {
     // Every trial gets a status; only the ok ones enter the means and figures,
     // and the others are counted and named wherever the means are shown.
     let best = summary::best_possible(&models.reference(), &scenario.learner);
-    let per_trial: Vec<(u64, TrialStatus, Figures)> = results
+    let rows: Vec<_> = results
         .iter()
-        .map(|(seed, r)| match r {
-            Ok((o, _)) => (*seed, TrialStatus::of(o), Figures::of(o, best)),
-            Err(e) => (
-                *seed,
-                TrialStatus::Error(e.to_string()),
-                Figures::filled(f64::NAN),
-            ),
+        .map(|(seed, r)| {
+            let outcome = r.as_ref().map(|(_, o)| o).map_err(|e| e.to_string());
+            summary::trial_row(*seed, outcome, best)
         })
         .collect();
-    let aggregate = Aggregate::of(&per_trial);
-    let (mean, std, paper) = (aggregate.mean, aggregate.std, Figures::paper());
-    let trials: Vec<serde_json::Value> = per_trial
-        .iter()
-        .map(|(seed, status, f)| {
-            let mut v = serde_json::to_value(f).unwrap_or_default();
-            v["seed"] = (*seed).into();
-            v["status"] = status.to_string().into();
-            v
-        })
-        .collect();
-    let summary = serde_json::json!({
-        "trials": trials,
-        "trials_ok": aggregate.ok(),
-        "trials_failed": aggregate.failed_json(),
-        "mean": mean,
-        "std": std,
-        "paper": paper,
-        "reference": models.describe(),
-    });
-    std::fs::write(
-        out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)?,
+    let aggregate = Aggregate::of(&rows);
+    output::write_json(
+        &out.join("summary.json"),
+        &summary::summary_json(
+            &rows,
+            &scenario.learner_name,
+            testbed::learners::parameters(&scenario.learner_name, &scenario),
+            &models.describe(),
+        ),
     )?;
     ensure!(
         aggregate.ok() > 0,
         "no trial finished ok: {}",
         aggregate.describe()
     );
-
-    let (velocity_range, distance_range) =
-        (models.velocity_range_mm_s(), models.distance_range_mm());
-    let (header, rows) = results_table(&mean, &std, velocity_range, distance_range);
-    println!();
-    print_table(&header, &rows);
+    let (header, table) = report::table::results_table(
+        &aggregate.mean,
+        &aggregate.std,
+        models.velocity_range_mm_s(),
+        models.distance_range_mm(),
+    );
+    println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("{}", models.describe());
 
@@ -226,9 +166,9 @@ fn main() -> Result<()> {
     write_demos(&out, &demos)?;
     let outcomes: Vec<TrialOutcome> = results
         .into_iter()
-        .zip(&per_trial)
+        .zip(&rows)
         .filter(|(_, row)| row.1.is_ok())
-        .filter_map(|((_, r), _)| r.ok().map(|(o, _)| o))
+        .filter_map(|((_, r), _)| r.ok().map(|(_, o)| o))
         .collect();
     let data = report::paper::RunData {
         measured: &models,
@@ -242,15 +182,15 @@ fn main() -> Result<()> {
     };
     let figures = report::paper::write_figures(&out, &data)?;
     let page = Page {
-        title: "SCASM on the simulated quadruped".into(),
+        title: "Self-calibration on the simulated quadruped".into(),
         paragraphs: vec![
             format!(
                 "{} trials of {} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
-                per_trial.len(),
+                rows.len(),
                 scenario.duration_s,
-                seeds[0],
-                seeds[seeds.len() - 1] + 1,
-                args.learner,
+                scenario.seeds.0,
+                scenario.seeds.1,
+                scenario.learner_name,
                 scenario.mode
             ),
             format!(
@@ -262,12 +202,18 @@ fn main() -> Result<()> {
                 models.describe(),
                 scenario.reference_key()
             ),
+            format!("Made by {}.", made_by.describe()),
         ],
         header,
-        rows,
+        rows: table,
         figures: figures
             .iter()
-            .map(|f| (f.stem.to_string(), caption(f.stem).to_string()))
+            .map(|f| {
+                (
+                    f.stem.to_string(),
+                    report::paper::caption(f.stem).to_string(),
+                )
+            })
             .collect(),
     };
     page.write(&out.join("index.html"))?;
@@ -278,132 +224,10 @@ fn main() -> Result<()> {
 
     println!(
         "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",
-        per_trial.len(),
-        mean.realtime_factor,
+        rows.len(),
+        aggregate.mean.realtime_factor,
         started.elapsed().as_secs_f64(),
         out.display()
     );
     Ok(())
-}
-
-/// The results beside the paper's, as rows of text (for the console and the page).
-fn results_table(
-    mean: &Figures,
-    std: &Figures,
-    velocity_range: f64,
-    distance_range: f64,
-) -> (Vec<String>, Vec<Vec<String>>) {
-    let header = [
-        "figure",
-        "learned / best poly (ours / paper)",
-        "ours (mean +- std)",
-        "paper",
-        "best poly (ours / paper)",
-        "A0 (ours / paper)",
-    ]
-    .map(String::from)
-    .to_vec();
-    let paper = Figures::paper();
-    let ours = |m: f64, s: f64, range: f64| {
-        format!(
-            "{m:.1} +- {s:.1} ({:.1} % of {range:.0})",
-            100.0 * m / range
-        )
-    };
-    let pair = |a: f64, b: f64| format!("{a:.1} / {b:.1}");
-    let ratio = |a: f64, best_a: f64, b: f64, best_b: f64| {
-        format!("{:.2}x / {:.2}x", a / best_a, b / best_b)
-    };
-    let rows = vec![
-        vec![
-            "action RMSE (mm/s)".into(),
-            ratio(
-                mean.action_rmse_mm_s,
-                mean.action_best_rmse_mm_s,
-                paper.action_rmse_mm_s,
-                paper.action_best_rmse_mm_s,
-            ),
-            ours(mean.action_rmse_mm_s, std.action_rmse_mm_s, velocity_range),
-            format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
-            pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
-            pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
-        ],
-        vec![
-            "sensor RMSE (mm)".into(),
-            ratio(
-                mean.sensor_rmse_mm,
-                mean.sensor_best_rmse_mm,
-                paper.sensor_rmse_mm,
-                paper.sensor_best_rmse_mm,
-            ),
-            ours(mean.sensor_rmse_mm, std.sensor_rmse_mm, distance_range),
-            format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
-            pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
-            "-".into(),
-        ],
-        vec![
-            "consistency".into(),
-            "-".into(),
-            format!("{:.3} +- {:.3}", mean.consistency, std.consistency),
-            format!("{:.2} +- 0.06", paper.consistency),
-            "-".into(),
-            "-".into(),
-        ],
-    ];
-    (header, rows)
-}
-
-fn print_table(header: &[String], rows: &[Vec<String>]) {
-    let widths: Vec<usize> = (0..header.len())
-        .map(|c| {
-            std::iter::once(header)
-                .chain(rows.iter().map(Vec::as_slice))
-                .map(|r| r.get(c).map_or(0, |s| s.chars().count()))
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
-    for row in std::iter::once(header).chain(rows.iter().map(Vec::as_slice)) {
-        let cells: Vec<String> = row
-            .iter()
-            .zip(&widths)
-            .enumerate()
-            .map(|(i, (c, &w))| {
-                if i == 0 {
-                    format!("{c:<w$}")
-                } else {
-                    format!("{c:>w$}")
-                }
-            })
-            .collect();
-        println!("{}", cells.join("  "));
-    }
-}
-
-/// What each figure shows (the page's captions).
-fn caption(stem: &str) -> &'static str {
-    match stem {
-        "fig2a" => {
-            "Fig. 2a. Readings against time while walking forwards at one constant command, with the best-fit cubic of time on reading: a sensor model in seconds of this walk (section IV)."
-        }
-        "fig2b" => {
-            "Fig. 2b. Readings against x_a dead-reckoned by the identity action model A0 over one cycle (+ forwards, x backwards), with the cubic fitted to all of them. A0 is wrong, so forwards and backwards disagree; the cubic still has the right shape."
-        }
-        "fig3" => {
-            "Fig. 3. x_s = S(obs) by the rough S of Fig. 2a over one cycle, with the piecewise-linear path of the action model learned from it: slope A(C(t)), x(0) from the fit (section V)."
-        }
-        "fig6" => {
-            "Fig. 6. x_s (+) and x_a (line) over the typical trial (median final sensor error) while both models learn: they come into agreement."
-        }
-        "fig7a" => {
-            "Fig. 7a. Measured velocity per command (stopwatch protocol, +- 1 std) and the typical trial's learned action model after its best scale."
-        }
-        "fig7b" => {
-            "Fig. 7b. Measured distance per reading (stand-and-read protocol) and the typical trial's learned sensor model after its best affine map."
-        }
-        "fig8" => {
-            "Fig. 8. Errors of the learned models every 5 s, mean and std over the trials, with the best possible polynomial of each model's degree (dashed)."
-        }
-        _ => "",
-    }
 }

@@ -151,7 +151,7 @@ fn a_run_writes_all_seven_figures_and_its_page() {
     scenario.duration_s = 50.0;
     let trials: Vec<_> = experiment::run_trials(&scenario, models, &[0, 1], &|_, _| {})
         .into_iter()
-        .map(|(_, r)| r.expect("trial").0)
+        .map(|(_, r)| r.expect("trial").1)
         .collect();
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("figures-run");
     let _ = std::fs::remove_dir_all(&dir);

@@ -9,7 +9,7 @@ use testbed::experiment;
 use testbed::metrics;
 use testbed::reference::MeasuredModels;
 use testbed::scenario::Scenario;
-use testbed::trial::{self, TrialConfig, TrialRunner};
+use testbed::trial::{self, TrialConfig};
 
 /// The measured reference, measured once per test run (and cached between runs).
 fn setup() -> &'static (Scenario, MeasuredModels) {
@@ -183,25 +183,25 @@ fn the_learner_gets_only_commands_and_readings() {
 #[test]
 fn a_trial_resumed_from_a_learner_checkpoint_ends_bit_identical() {
     let (scenario, _) = setup();
-    let cfg = config(11, 45.0);
-    let mut straight_runner =
-        TrialRunner::new(&scenario.description, scenario.sim, cfg).expect("runner");
-    let mut resumed_runner =
-        TrialRunner::new(&scenario.description, scenario.sim, cfg).expect("runner");
+    let recording =
+        trial::record(&scenario.description, scenario.sim, config(11, 45.0)).expect("recording");
+    let (first, second) = recording.frames.split_at(recording.frames.len() / 2);
     let mut straight = Scasm::default();
     let mut first_half = Scasm::default();
-    let frames = straight_runner.total_frames();
-    for _ in 0..frames / 2 {
-        straight_runner.step_frame(&mut straight).expect("frame");
-        resumed_runner.step_frame(&mut first_half).expect("frame");
+    for f in first {
+        trial::feed(&mut straight, f).expect("frame");
+        trial::feed(&mut first_half, f).expect("frame");
     }
     // Stop: save the learner and go on with one restored from the checkpoint alone.
     let checkpoint = serde_json::to_string(&first_half).expect("save");
     let mut resumed: Scasm = serde_json::from_str(&checkpoint).expect("restore");
-    while !straight_runner.finished() {
-        let a = straight_runner.step_frame(&mut straight).expect("frame");
-        let b = resumed_runner.step_frame(&mut resumed).expect("frame");
-        assert_eq!(a.x_a.map(f64::to_bits), b.x_a.map(f64::to_bits));
+    for f in second {
+        trial::feed(&mut straight, f).expect("frame");
+        trial::feed(&mut resumed, f).expect("frame");
+        assert_eq!(
+            straight.x_a().map(f64::to_bits),
+            resumed.x_a().map(f64::to_bits)
+        );
     }
     assert_eq!(bits(straight.action_model()), bits(resumed.action_model()));
     assert_eq!(bits(straight.sensor_model()), bits(resumed.sensor_model()));

@@ -34,7 +34,7 @@ fn run_all(runs: &[Run]) -> Results {
     let mut results = Results::new(vec!["learner.gamma".into(), "learner.t_start".into()]);
     for run in runs {
         let scenario = run.scenario(base).expect("valid");
-        let (outcome, _) = experiment::run_one(&scenario, models, run.seed).expect("trial");
+        let (_, outcome) = experiment::run_one(&scenario, models, run.seed).expect("trial");
         let best = summary::best_possible(&models.reference(), &scenario.learner);
         results.insert(Row {
             run: run.clone(),

@@ -5,7 +5,7 @@
 use plotters::chart::SeriesLabelPosition;
 use plotters::prelude::*;
 use report::plot::{Chart, Mark, Series, colours};
-use scasm::{CalibrationLearner, Scasm};
+use scasm::CalibrationLearner;
 use testbed::behaviour::Phase;
 use testbed::metrics;
 use testbed::reference::MeasuredModels;
@@ -21,7 +21,7 @@ const SCENE_W: u32 = 800;
 /// The run's state of the moment, as the dashboard shows it.
 pub struct Moment<'a> {
     pub runner: &'a TrialRunner,
-    pub learner: &'a Scasm,
+    pub learner: &'a dyn CalibrationLearner,
     pub models: &'a MeasuredModels,
     pub last: Option<TraceRow>,
     pub seed: u64,

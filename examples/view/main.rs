@@ -13,8 +13,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow};
 use clap::Parser;
-use testbed::experiment;
-use testbed::trial::{TraceRow, TrialConfig, TrialRunner};
+use scasm::CalibrationLearner;
+use testbed::trial::{self, TraceRow, TrialConfig, TrialRunner};
+use testbed::{experiment, learners};
 
 /// Show a SCASM training trial on the simulated quadruped, live.
 #[derive(Debug, Parser)]
@@ -52,14 +53,21 @@ fn main() -> Result<()> {
     println!("Measuring (or reading from the cache) the robot's true models...");
     let models = testbed::reference::measured_models(&scenario, Some(&args.cache))?;
     let reference = models.reference();
-    let mut learner = experiment::learner_for(&scenario, &reference).map_err(|e| anyhow!(e))?;
+    let mut learner =
+        learners::build(&scenario.learner_name, &scenario, &reference).map_err(|e| anyhow!(e))?;
     let config = TrialConfig {
         duration_s: args.seconds.unwrap_or(1e9),
-        seed: args.seed,
-        behaviour: experiment::behaviour_for(&models),
-        judge_every_s: 5.0,
+        ..experiment::trial_config(&scenario, &models, args.seed)
     };
     let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
+    // The world steps one frame, then the learner is fed it: the same feeding
+    // as every recorded run.
+    let step =
+        |runner: &mut TrialRunner, learner: &mut learners::BoxedLearner| -> Result<TraceRow> {
+            let frame = runner.step_frame()?;
+            trial::feed(learner.as_mut(), &frame)?;
+            Ok(TraceRow::of(&frame, learner.as_ref()))
+        };
 
     let (w, h) = (dashboard::SIZE.0 as usize, dashboard::SIZE.1 as usize);
     let mut window = if args.no_window {
@@ -78,7 +86,7 @@ fn main() -> Result<()> {
 
     let started = Instant::now();
     let mut last = None;
-    let draw = |runner: &TrialRunner, learner: &scasm::Scasm, last: Option<TraceRow>| {
+    let draw = |runner: &TrialRunner, learner: &dyn CalibrationLearner, last: Option<TraceRow>| {
         let sim_t = last.map_or(0.0, |r| r.t_s);
         dashboard::render(&dashboard::Moment {
             runner,
@@ -100,9 +108,9 @@ fn main() -> Result<()> {
                 if runner.finished() || last.is_some_and(|r: TraceRow| r.t_s >= sim_due) {
                     break;
                 }
-                last = Some(runner.step_frame(&mut learner)?);
+                last = Some(step(&mut runner, &mut learner)?);
             }
-            let picture = draw(&runner, &learner, last)?;
+            let picture = draw(&runner, learner.as_ref(), last)?;
             for (px, c) in frame_buffer.iter_mut().zip(picture.chunks_exact(3)) {
                 *px = u32::from(c[0]) << 16 | u32::from(c[1]) << 8 | u32::from(c[2]);
             }
@@ -114,11 +122,11 @@ fn main() -> Result<()> {
     } else {
         // Headless: as fast as it goes, drawn once at the end.
         while !runner.finished() {
-            last = Some(runner.step_frame(&mut learner)?);
+            last = Some(step(&mut runner, &mut learner)?);
         }
     }
     if let Some(path) = &args.screenshot {
-        let picture = draw(&runner, &learner, last)?;
+        let picture = draw(&runner, learner.as_ref(), last)?;
         report::write_png(path, &picture, dashboard::SIZE)?;
         println!("wrote {}", path.display());
     }

@@ -391,3 +391,31 @@ fn fig8(trials: &[TrialOutcome], best: (f64, f64), degrees: (usize, usize)) -> F
         },
     }
 }
+
+/// What each figure shows (the page's captions).
+pub fn caption(stem: &str) -> &'static str {
+    match stem {
+        "fig2a" => {
+            "Fig. 2a. Readings against time while walking forwards at one constant command, with the best-fit cubic of time on reading: a sensor model in seconds of this walk (section IV)."
+        }
+        "fig2b" => {
+            "Fig. 2b. Readings against x_a dead-reckoned by the identity action model A0 over one cycle (+ forwards, x backwards), with the cubic fitted to all of them. A0 is wrong, so forwards and backwards disagree; the cubic still has the right shape."
+        }
+        "fig3" => {
+            "Fig. 3. x_s = S(obs) by the rough S of Fig. 2a over one cycle, with the piecewise-linear path of the action model learned from it: slope A(C(t)), x(0) from the fit (section V)."
+        }
+        "fig6" => {
+            "Fig. 6. x_s (+) and x_a (line) over the typical trial (median final sensor error) while both models learn: they come into agreement."
+        }
+        "fig7a" => {
+            "Fig. 7a. Measured velocity per command (stopwatch protocol, +- 1 std) and the typical trial's learned action model after its best scale."
+        }
+        "fig7b" => {
+            "Fig. 7b. Measured distance per reading (stand-and-read protocol) and the typical trial's learned sensor model after its best affine map."
+        }
+        "fig8" => {
+            "Fig. 8. Errors of the learned models every 5 s, mean and std over the trials, with the best possible polynomial of each model's degree (dashed)."
+        }
+        _ => "",
+    }
+}

@@ -41,6 +41,30 @@ pub struct ScasmConfig {
     /// regressing location on a noisy reading (errors in variables). Each such
     /// point is discounted by `gamma^k`, so the fit's memory in time is unchanged.
     pub sensor_window: usize,
+    /// How S is fitted: as the paper does (location on reading), or through the
+    /// forward model (reading on location), which removes the
+    /// errors-in-variables bias.
+    pub sensor_fit: SensorFit,
+    /// Degree of the forward model `obs ~ g(x)` when `sensor_fit` is
+    /// [`SensorFit::Forward`], 1..=MAX_REGRESSORS.
+    pub forward_degree: usize,
+}
+
+/// How the sensor model is fitted to `(reading, x_a)` pairs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum SensorFit {
+    /// The paper's: location regressed on the reading (Eq. 2-7). Noise in the
+    /// reading biases it (errors in variables).
+    #[default]
+    Inverse,
+    /// The reading regressed on location (its noise is then in the target),
+    /// inverted into S on an even grid of locations.
+    Forward,
 }
 
 /// The largest [`ScasmConfig::sensor_window`].
@@ -59,6 +83,8 @@ impl Default for ScasmConfig {
             action_degree: 4,
             command_scale: 300.0,
             sensor_window: 5,
+            sensor_fit: SensorFit::Inverse,
+            forward_degree: 5,
         }
     }
 }
@@ -92,6 +118,12 @@ impl ScasmConfig {
         if !(self.command_scale.is_finite() && self.command_scale > 0.0) {
             return Err(ConfigError::CommandScale {
                 command_scale: self.command_scale,
+            });
+        }
+        if !(1..=MAX_REGRESSORS).contains(&self.forward_degree) {
+            return Err(ConfigError::ForwardDegree {
+                degree: self.forward_degree,
+                max: MAX_REGRESSORS,
             });
         }
         if !(1..=MAX_SENSOR_WINDOW).contains(&self.sensor_window) {
@@ -161,6 +193,14 @@ impl ScasmParams {
     /// Readings per point of the sensor fit.
     pub fn sensor_window(&self) -> usize {
         self.0.sensor_window
+    }
+    /// How S is fitted.
+    pub fn sensor_fit(&self) -> SensorFit {
+        self.0.sensor_fit
+    }
+    /// Degree of the forward model (with [`SensorFit::Forward`]).
+    pub fn forward_degree(&self) -> usize {
+        self.0.forward_degree
     }
 
     /// See [`ScasmConfig::command_scale`].

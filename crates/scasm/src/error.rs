@@ -30,6 +30,14 @@ pub enum ConfigError {
         /// The largest degree supported.
         max: usize,
     },
+    /// The forward sensor model's degree is out of range.
+    #[error("learner.forward_degree must be in 1..={max}, got {degree}")]
+    ForwardDegree {
+        /// The value given.
+        degree: usize,
+        /// The largest degree supported.
+        max: usize,
+    },
     /// The sensor fit's reading window is out of range.
     #[error("learner.sensor_window must be in 1..={max}, got {window}")]
     SensorWindow {
@@ -51,6 +59,22 @@ pub enum ConfigError {
     CommandScale {
         /// The value given.
         command_scale: f64,
+    },
+    /// The batch learner's solve period must be finite and positive.
+    #[error("batch-ml's solve_every_s must be finite and > 0, got {solve_every_s}")]
+    SolveEvery {
+        /// The value given.
+        solve_every_s: f64,
+    },
+    /// The batch learner needs at least one iteration and one round.
+    #[error(
+        "batch-ml needs iterations >= 1 and noise_rounds >= 1, got {iterations} and {noise_rounds}"
+    )]
+    Iterations {
+        /// Iterations per round.
+        iterations: usize,
+        /// Rounds.
+        noise_rounds: usize,
     },
     /// A model given to a one-sided mode has a non-finite coefficient.
     #[error("the given {which} model has a non-finite coefficient")]

@@ -29,8 +29,11 @@
 #![warn(missing_docs)]
 
 mod action_fit;
+#[cfg(feature = "std")]
+mod batch;
 mod config;
 mod error;
+mod forward_fit;
 mod learner;
 mod poly_fit;
 mod polynomial;
@@ -41,7 +44,9 @@ mod wls;
 /// action model of degree up to one less (its regressors are `V_0..V_d`).
 pub const MAX_REGRESSORS: usize = 8;
 
-pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams};
+#[cfg(feature = "std")]
+pub use batch::{BatchMl, BatchMlConfig, BatchMlParams};
+pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
 pub use polynomial::{MAX_COEFFS, Polynomial};

@@ -2,8 +2,9 @@
 //! (sections IV and V), all driven through [`CalibrationLearner`].
 
 use crate::action_fit::ActionFit;
-use crate::config::ScasmParams;
+use crate::config::{ScasmParams, SensorFit};
 use crate::error::{ConfigError, EventError};
+use crate::forward_fit::ForwardFit;
 use crate::learner::{CalibrationLearner, Event};
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
@@ -42,7 +43,7 @@ pub struct Scasm {
     clock_s: f64,
     x_a: f64,
     x_s: Option<f64>,
-    sensor_fit: PolynomialFit,
+    sensor_fit: SensorFitState,
     action_fit: ActionFit,
     sensor_model: Option<Polynomial>,
     action_model: Option<Polynomial>,
@@ -52,6 +53,47 @@ pub struct Scasm {
     /// Readings (and their `x_a`) gathered for the next point of the sensor fit.
     #[cfg_attr(feature = "serde", serde(default))]
     window: ReadingWindow,
+}
+
+/// The sensor fit in use (see [`SensorFit`]).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+enum SensorFitState {
+    Inverse(PolynomialFit),
+    Forward(ForwardFit),
+}
+
+impl SensorFitState {
+    fn new(params: &ScasmParams) -> Self {
+        // A point of the fit stands for `sensor_window` readings, so it is
+        // discounted as many times: the fit's memory in time is gamma's.
+        let gamma = libm::pow(params.gamma(), params.sensor_window() as f64);
+        match params.sensor_fit() {
+            SensorFit::Inverse => Self::Inverse(PolynomialFit::new(params.sensor_degree(), gamma)),
+            SensorFit::Forward => Self::Forward(ForwardFit::new(params.forward_degree(), gamma)),
+        }
+    }
+
+    fn add(&mut self, obs_px: f64, x: f64) {
+        match self {
+            Self::Inverse(f) => f.add(obs_px, x),
+            Self::Forward(f) => f.add(obs_px, x),
+        }
+    }
+
+    fn sensor_model(&self, degree: usize) -> Option<Polynomial> {
+        match self {
+            Self::Inverse(f) => f.polynomial(),
+            Self::Forward(f) => f.sensor_model(degree),
+        }
+    }
+
+    fn points(&self) -> u64 {
+        match self {
+            Self::Inverse(f) => f.points(),
+            Self::Forward(f) => f.points(),
+        }
+    }
 }
 
 /// Sums of the readings, and of `x_a` at them, for one point of the sensor fit.
@@ -92,10 +134,7 @@ impl Scasm {
             clock_s: 0.0,
             x_a: 0.0,
             x_s: None,
-            sensor_fit: PolynomialFit::new(
-                params.sensor_degree(),
-                libm::pow(params.gamma(), params.sensor_window() as f64),
-            ),
+            sensor_fit: SensorFitState::new(&params),
             action_fit: ActionFit::new(
                 params.action_degree(),
                 params.gamma(),
@@ -239,7 +278,13 @@ impl Scasm {
             let n = w.count as f64;
             self.sensor_fit.add(w.obs_sum / n, w.x_a_sum / n);
             self.window = ReadingWindow::default();
-            self.sensor_model = self.sensor_fit.polynomial();
+            // A forward fit that cannot be inverted this time keeps the last
+            // model; the paper's fit is either determined or not.
+            match self.sensor_fit.sensor_model(self.params.sensor_degree()) {
+                Some(m) => self.sensor_model = Some(m),
+                None if matches!(self.sensor_fit, SensorFitState::Forward(_)) => {}
+                None => self.sensor_model = None,
+            }
         }
     }
 }

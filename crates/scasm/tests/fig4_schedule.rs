@@ -31,6 +31,7 @@ fn learner() -> Scasm {
         action_degree: 1,
         command_scale: 1.0,
         sensor_window: 1,
+        ..Default::default()
     }
     .validate()
     .expect("valid");

@@ -8,8 +8,9 @@ use scasm::{CalibrationLearner, Mode, Polynomial, Scasm};
 use crate::behaviour::{ConstantWalk, Phase};
 use crate::experiment::behaviour_for;
 use crate::reference::MeasuredModels;
+use crate::reference::Reference;
 use crate::scenario::Scenario;
-use crate::trial::{TraceRow, TrialConfig, TrialError, TrialRunner};
+use crate::trial::{self, FrameRecord, Recording, TraceRow, TrialConfig, TrialError, TrialRunner};
 
 /// The command of the constant walk (Fig. 2a).
 pub const CONSTANT_COMMAND: f64 = 200.0;
@@ -71,29 +72,34 @@ pub fn run_demos(
         near_obs_px: behaviour.near_obs_px,
         arrived: false,
     };
+    let reference = models.reference();
     let mut runner =
         TrialRunner::with_behaviour(&scenario.description, walk_sim, config, Box::new(walk))?;
-    let constant_walk = run_until(
-        &mut runner,
+    let walk_frames = record_phases(&mut runner, 1)?;
+    let constant_walk = learn(
+        walk_frames,
+        seed,
         learner(Mode::SensorFromConstantAction)?,
-        |phases| phases >= 1,
+        &reference,
     )?;
     let rough_sensor = constant_walk
         .sensor
         .ok_or_else(|| TrialError::LearnerSetup("the constant walk saw too little".into()))?;
 
-    let one_cycle = |phases: usize| phases >= 2;
+    // One cycle of the training behaviour, recorded once and fed to both.
     let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
-    let sensor_from_a0 = run_until(
-        &mut runner,
+    let cycle = record_phases(&mut runner, 2)?;
+    let sensor_from_a0 = learn(
+        cycle.clone(),
+        seed,
         learner(Mode::SensorFromAction(Polynomial::identity()))?,
-        one_cycle,
+        &reference,
     )?;
-    let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
-    let action_from_rough_sensor = run_until(
-        &mut runner,
+    let action_from_rough_sensor = learn(
+        cycle,
+        seed,
         learner(Mode::ActionFromSensor(rough_sensor))?,
-        one_cycle,
+        &reference,
     )?;
     Ok(Demos {
         constant_walk,
@@ -102,23 +108,33 @@ pub fn run_demos(
     })
 }
 
-/// Runs frames until `done(phase changes so far)` or the runner's time is up.
-fn run_until(
-    runner: &mut TrialRunner,
-    mut learner: Scasm,
-    done: impl Fn(usize) -> bool,
-) -> Result<DemoRun, TrialError> {
-    let mut trace = Vec::new();
+/// Records frames until the behaviour has changed phase `changes` times (or
+/// the runner's time is up).
+fn record_phases(runner: &mut TrialRunner, changes: usize) -> Result<Vec<FrameRecord>, TrialError> {
     let mut phase: Phase = runner.behaviour().phase();
-    let mut changes = 0;
-    while !runner.finished() && !done(changes) {
-        trace.push(runner.step_frame(&mut learner)?);
-        let now = runner.behaviour().phase();
-        changes += usize::from(now != phase);
-        phase = now;
-    }
+    let mut seen = 0;
+    runner.record_until(|b| {
+        seen += usize::from(b.phase() != phase);
+        phase = b.phase();
+        seen >= changes
+    })
+}
+
+/// Runs `learner` over the frames.
+fn learn(
+    frames: Vec<FrameRecord>,
+    seed: u64,
+    mut learner: Scasm,
+    reference: &Reference,
+) -> Result<DemoRun, TrialError> {
+    let recording = Recording {
+        seed,
+        frames,
+        realtime_factor: f64::NAN,
+    };
+    let outcome = trial::learn(&recording, &mut learner, reference, MAX_DEMO_S)?;
     Ok(DemoRun {
-        trace,
+        trace: outcome.trace,
         action: learner.action_model(),
         sensor: learner.sensor_model(),
         action_start: learner.action_start(),

@@ -1,18 +1,20 @@
-//! The paper's experiment: the training behaviour's thresholds and the learner
-//! for a scenario, and trials over many seeds in parallel.
+//! The one run pipeline every run kind uses: a scenario's trial is recorded
+//! (the world, with the training behaviour's thresholds from the measured
+//! sensor model), then any learner runs over the recording and is judged
+//! against the measured models; many seeds run in parallel.
 
 use rayon::prelude::*;
-use scasm::{CalibrationLearner, Mode, Polynomial, Scasm};
 
 use crate::behaviour::BehaviourConfig;
+use crate::learners;
 use crate::metrics;
-use crate::reference::{MeasuredModels, Reference};
-use crate::scenario::{LearningMode, Scenario};
-use crate::trial::{self, TrialConfig, TrialError, TrialOutcome};
+use crate::reference::MeasuredModels;
+use crate::scenario::Scenario;
+use crate::trial::{self, Recording, TrialConfig, TrialError, TrialOutcome};
 
-/// How far beyond each end of the test range the behaviour turns round, m: the
-/// readings of a walking robot run about a pixel below those of one standing, so
-/// turning at the end's own reading would stop short of it.
+/// How far beyond each end of the test range the behaviour turns round, m, so
+/// that the robot covers the whole range although a turn is decided on the
+/// median of a few noisy readings.
 pub const TURN_MARGIN_M: f64 = 0.15;
 
 /// The behaviour's thresholds from the measured sensor model: turn round at the
@@ -52,56 +54,64 @@ pub fn behaviour_for(models: &MeasuredModels) -> BehaviourConfig {
     }
 }
 
-/// The learner for a mode: the given model of a one-sided mode is the best
-/// polynomial through the measured one, in mm (location is distance, so the
-/// action model is minus the forward speed).
-pub fn learner_for(scenario: &Scenario, reference: &Reference) -> Result<Scasm, String> {
-    let params = scenario.learner.validate().map_err(|e| e.to_string())?;
-    let mode = match scenario.mode {
-        LearningMode::Simultaneous => Mode::Simultaneous,
-        LearningMode::SensorFromAction => {
-            let a = metrics::best_polynomial(&reference.action, scenario.learner.action_degree)
-                .ok_or("cannot fit the measured action model")?;
-            let minus: Vec<f64> = a.coeffs().iter().map(|c| -c).collect();
-            Mode::SensorFromAction(Polynomial::new(&minus).ok_or("bad action model")?)
-        }
-        LearningMode::ActionFromSensor => {
-            let pts: Vec<(f64, f64)> = reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
-            Mode::ActionFromSensor(
-                metrics::best_polynomial(&pts, scenario.learner.sensor_degree)
-                    .ok_or("cannot fit the measured sensor model")?,
-            )
-        }
-    };
-    Scasm::new(params, mode).map_err(|e| e.to_string())
-}
+/// How often the learned models are judged during a trial (Fig. 8), s.
+pub const JUDGE_EVERY_S: f64 = 5.0;
 
-/// Runs one trial of `scenario` from `seed`, judged against `models`.
-pub fn run_one(
-    scenario: &Scenario,
-    models: &MeasuredModels,
-    seed: u64,
-) -> Result<(TrialOutcome, Scasm), TrialError> {
-    let reference = models.reference();
-    let mut learner = learner_for(scenario, &reference).map_err(TrialError::LearnerSetup)?;
-    let config = TrialConfig {
+/// The trial settings of `scenario` from `seed`.
+pub fn trial_config(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> TrialConfig {
+    TrialConfig {
         duration_s: scenario.duration_s,
         seed,
         behaviour: behaviour_for(models),
-        judge_every_s: 5.0,
-    };
-    let outcome = trial::run_trial(
-        &scenario.description,
-        scenario.sim,
-        config,
-        &mut learner as &mut dyn CalibrationLearner,
-        &reference,
-    )?;
-    Ok((outcome, learner))
+        judge_every_s: JUDGE_EVERY_S,
+    }
 }
 
-/// A trial's outcome and its learner, or why it could not run.
-pub type TrialResult = Result<(TrialOutcome, Scasm), TrialError>;
+/// Records one trial of `scenario` from `seed`: the world only.
+pub fn record(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+) -> Result<Recording, TrialError> {
+    trial::record(
+        &scenario.description,
+        scenario.sim,
+        trial_config(scenario, models, seed),
+    )
+}
+
+/// Runs learner `name` (set up for `scenario`) over a recording, judged
+/// against `models`.
+pub fn learn(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    recording: &Recording,
+    name: &str,
+) -> Result<TrialOutcome, TrialError> {
+    let reference = models.reference();
+    let mut learner =
+        learners::build(name, scenario, &reference).map_err(TrialError::LearnerSetup)?;
+    Ok(trial::learn(
+        recording,
+        learner.as_mut(),
+        &reference,
+        JUDGE_EVERY_S,
+    )?)
+}
+
+/// A recorded trial and the scenario's learner's run over it.
+pub type RecordedTrial = (Recording, TrialOutcome);
+
+/// A recorded trial and its learner's run, or why it could not run.
+pub type TrialResult = Result<RecordedTrial, TrialError>;
+
+/// Records one trial of `scenario` from `seed` and runs the scenario's learner
+/// over it.
+pub fn run_one(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> TrialResult {
+    let recording = record(scenario, models, seed)?;
+    let outcome = learn(scenario, models, &recording, &scenario.learner_name)?;
+    Ok((recording, outcome))
+}
 
 /// Runs one trial per seed in parallel, calling `done` as each finishes. A
 /// trial that cannot run does not stop the others: its error is its result.
@@ -109,14 +119,69 @@ pub fn run_trials(
     scenario: &Scenario,
     models: &MeasuredModels,
     seeds: &[u64],
-    done: &(dyn Fn(u64, Option<&TrialOutcome>) + Sync),
+    done: &(dyn Fn(u64, Option<&RecordedTrial>) + Sync),
 ) -> Vec<(u64, TrialResult)> {
     seeds
         .par_iter()
         .map(|&seed| {
             let result = run_one(scenario, models, seed);
-            done(seed, result.as_ref().ok().map(|r| &r.0));
+            done(seed, result.as_ref().ok());
             (seed, result)
         })
         .collect()
+}
+
+/// One learner's trial in a batch of runs.
+#[derive(Debug, Clone, Copy)]
+pub struct Job<'a> {
+    /// The scenario (world and learner settings).
+    pub scenario: &'a Scenario,
+    /// Its measured reference.
+    pub models: &'a MeasuredModels,
+    /// The trial's seed.
+    pub seed: u64,
+    /// The learner's name.
+    pub learner: &'a str,
+}
+
+/// What a recording depends on: the robot, world and camera (the reference
+/// key), the behaviour (set from the reference), the trial's length and seed.
+/// Jobs with the same key can share one recording, whatever their learners.
+pub fn world_key(scenario: &Scenario, seed: u64) -> String {
+    format!(
+        "{}/{}/{seed}",
+        scenario.reference_key(),
+        scenario.duration_s
+    )
+}
+
+/// Runs every job, recording each distinct world once (see [`world_key`]) and
+/// feeding it to every learner that shares it; worlds and learners run in
+/// parallel. `done(index of the job, its result)` is called as each finishes.
+pub fn run_jobs(
+    jobs: &[Job<'_>],
+    done: &(dyn Fn(usize, &Result<TrialOutcome, TrialError>) + Sync),
+) {
+    let mut worlds: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
+    for (i, job) in jobs.iter().enumerate() {
+        worlds
+            .entry(world_key(job.scenario, job.seed))
+            .or_default()
+            .push(i);
+    }
+    worlds.into_values().par_bridge().for_each(|members| {
+        let first = &jobs[members[0]];
+        match record(first.scenario, first.models, first.seed) {
+            Ok(recording) => members.par_iter().for_each(|&i| {
+                let job = &jobs[i];
+                done(i, &learn(job.scenario, job.models, &recording, job.learner));
+            }),
+            Err(e) => {
+                let message = e.to_string();
+                for &i in &members {
+                    done(i, &Err(TrialError::Recording(message.clone())));
+                }
+            }
+        }
+    });
 }

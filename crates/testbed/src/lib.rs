@@ -7,11 +7,14 @@
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod dataset;
 pub mod demos;
 pub mod experiment;
+pub mod learners;
 pub mod measure;
 pub mod metrics;
 pub mod output;
+pub mod provenance;
 pub mod reference;
 pub mod scenario;
 pub mod seeds;

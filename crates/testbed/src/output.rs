@@ -1,13 +1,17 @@
-//! Writing results: CSV files written whole or not at all (to a temporary file
-//! first, then renamed): the measured models in the paper's column layout, and
-//! trials' traces and errors over time.
+//! Writing results, each file whole or not at all (to a temporary file first,
+//! then renamed): the measured models in the paper's column layout, a run's
+//! settings, and each trial's dataset, trace, errors over time and models.
 
 use std::io::Write;
 use std::path::Path;
 
+use scasm::Polynomial;
+
 use crate::measure::{MeasuredReading, MeasuredVelocity};
+use crate::provenance::Provenance;
 use crate::reference::Judgement;
-use crate::trial::TraceRow;
+use crate::scenario::Scenario;
+use crate::trial::{TraceRow, TrialOutcome};
 
 /// Writes `header` and `rows` to `path`: to `path.tmp`, then renamed into place,
 /// so that a reader never sees half a file.
@@ -26,6 +30,63 @@ pub fn write_csv(
         f.flush()?;
     }
     std::fs::rename(&tmp, path)
+}
+
+/// Writes `bytes` to `path` via `path.tmp` and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    let tmp = std::path::PathBuf::from(tmp);
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path)
+}
+
+/// Writes `value` as pretty JSON.
+pub fn write_json<T: serde::Serialize + ?Sized>(path: &Path, value: &T) -> std::io::Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(std::io::Error::other)?;
+    write_atomic(path, text.as_bytes())
+}
+
+/// `models.json`: `{"action": [...], "sensor": [...]}`, raw-unit coefficients,
+/// lowest power first (`null` for a model never learned).
+pub fn write_models(
+    path: &Path,
+    action: Option<Polynomial>,
+    sensor: Option<Polynomial>,
+) -> std::io::Result<()> {
+    write_json(
+        path,
+        &serde_json::json!({
+            "action": action.map(|p| p.coeffs().to_vec()),
+            "sensor": sensor.map(|p| p.coeffs().to_vec()),
+        }),
+    )
+}
+
+/// `config.toml` in `dir`: every setting of the run's scenario, so that
+/// `--config DIR/config.toml` runs it again, headed by what made it.
+pub fn write_config(dir: &Path, scenario: &Scenario, made_by: &Provenance) -> std::io::Result<()> {
+    let text = format!(
+        "# Every setting of this run; `--config` this file to run it again.\n\
+         # Made by {}\n# Command: {}\n\n{}",
+        made_by.describe(),
+        made_by.command,
+        scenario.to_toml()
+    );
+    write_atomic(&dir.join("config.toml"), text.as_bytes())
+}
+
+/// A trial's learner files in `dir` (created if needed): `trace.csv`,
+/// `errors_over_time.csv` and `models.json`.
+pub fn write_learner_run(dir: &Path, outcome: &TrialOutcome) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    write_trace(&dir.join("trace.csv"), &outcome.trace)?;
+    write_errors_over_time(&dir.join("errors_over_time.csv"), &outcome.over_time)?;
+    write_models(
+        &dir.join("models.json"),
+        outcome.action_model,
+        outcome.sensor_model,
+    )
 }
 
 /// `measured_action.csv` in `dir`: `command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright`

@@ -2,7 +2,7 @@
 //! camera, learner settings, trial length), built from defaults, a scenario file
 //! and `key=value` settings, each checked at the door.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use quadsim::{RobotDescription, SimConfig, SimError};
 use scasm::ScasmConfig;
@@ -60,39 +60,69 @@ pub struct Scenario {
     pub description: RobotDescription,
     /// The URDF's text (part of the reference cache's key).
     pub urdf_text: String,
+    /// Where the URDF was read from (`None`: the shipped robot).
+    pub urdf_path: Option<PathBuf>,
     /// The world, robot controllers and camera.
     pub sim: SimConfig,
+    /// The learner's name (see [`crate::learners`]).
+    pub learner_name: String,
     /// The learner's hyper-parameters.
     pub learner: ScasmConfig,
     /// What is learned from what.
     pub mode: LearningMode,
     /// Trial length, s.
     pub duration_s: f64,
+    /// The seeds of a run's trials, `first..end` (end excluded).
+    pub seeds: (u64, u64),
 }
 
-/// The settings `--set` understands.
-pub const SETTING_KEYS: [&str; 20] = [
-    "learner.gamma",
-    "learner.beta",
-    "learner.t_start",
-    "learner.sensor_degree",
-    "learner.action_degree",
-    "learner.sensor_window",
-    "camera.noise_px",
-    "camera.width_px",
-    "camera.height_px",
-    "camera.hfov_deg",
-    "camera.vfov_deg",
-    "camera.frame_period_s",
-    "world.friction",
-    "servo.torque_scale",
-    "servo.speed_scale",
-    "world.start_distance_m",
-    "beacon.height_m",
-    "beacon.centre_m",
-    "beacon.radius_m",
-    "trial.duration",
+/// The longest trial, s (a day): a trial keeps every frame in memory, about
+/// 0.1 kB each at 20 Hz.
+pub const MAX_DURATION_S: f64 = 86_400.0;
+
+/// A setting's type, as a scenario file writes it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Number,
+    Count,
+    Text,
+}
+
+/// Every setting: its key and type. `--set`, scenario files and a run's
+/// `config.toml` all use these.
+const SETTINGS: [(&str, Kind); 26] = [
+    ("robot.urdf", Kind::Text),
+    ("trial.duration", Kind::Number),
+    ("trial.seeds", Kind::Text),
+    ("trial.mode", Kind::Text),
+    ("learner.name", Kind::Text),
+    ("learner.gamma", Kind::Number),
+    ("learner.beta", Kind::Number),
+    ("learner.t_start", Kind::Number),
+    ("learner.sensor_degree", Kind::Count),
+    ("learner.action_degree", Kind::Count),
+    ("learner.sensor_window", Kind::Count),
+    ("learner.forward_degree", Kind::Count),
+    ("camera.noise_px", Kind::Number),
+    ("camera.width_px", Kind::Count),
+    ("camera.height_px", Kind::Count),
+    ("camera.hfov_deg", Kind::Number),
+    ("camera.vfov_deg", Kind::Number),
+    ("camera.frame_period_s", Kind::Number),
+    ("world.friction", Kind::Number),
+    ("world.start_distance_m", Kind::Number),
+    ("servo.torque_scale", Kind::Number),
+    ("servo.speed_scale", Kind::Number),
+    ("beacon.height_m", Kind::Number),
+    ("beacon.centre_m", Kind::Number),
+    ("beacon.radius_m", Kind::Number),
+    ("physics.dt", Kind::Number),
 ];
+
+/// The settings `--set` understands, in the order `config.toml` writes them.
+pub fn setting_keys() -> impl Iterator<Item = &'static str> {
+    SETTINGS.iter().map(|s| s.0)
+}
 
 impl Scenario {
     /// The paper's experiment on the shipped robot, with the default learner
@@ -103,10 +133,13 @@ impl Scenario {
         Ok(Self {
             description: RobotDescription::from_urdf_str(&urdf_text).map_err(SimError::from)?,
             urdf_text,
+            urdf_path: None,
             sim: SimConfig::default(),
+            learner_name: crate::learners::DEFAULT.into(),
             learner: ScasmConfig::default(),
             mode: LearningMode::Simultaneous,
             duration_s: 150.0,
+            seeds: (0, 15),
         })
     }
 
@@ -126,16 +159,12 @@ impl Scenario {
         file: Option<&Path>,
         settings: &[String],
     ) -> Result<Self, SettingError> {
-        let robot_error = |file: String, e: String| SettingError::File { file, reason: e };
-        let mut scenario =
-            Self::paper().map_err(|e| robot_error("assets/ers7.urdf".into(), e.to_string()))?;
+        let mut scenario = Self::paper().map_err(|e| SettingError::File {
+            file: "assets/ers7.urdf".into(),
+            reason: e.to_string(),
+        })?;
         if let Some(path) = urdf {
-            let name = path.display().to_string();
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| robot_error(name.clone(), e.to_string()))?;
-            scenario.description = RobotDescription::from_urdf_str(&text)
-                .map_err(|e| robot_error(name.clone(), e.to_string()))?;
-            scenario.urdf_text = text;
+            scenario.set(&format!("robot.urdf={}", path.display()))?;
         }
         if let Some(path) = file {
             let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
@@ -168,17 +197,30 @@ impl Scenario {
                 )));
             };
             for (key, value) in entries {
-                let value = match value {
-                    toml::Value::Integer(i) => i.to_string(),
-                    toml::Value::Float(f) => f.to_string(),
-                    other => {
+                let full = format!("{section}.{key}");
+                let kind = SETTINGS.iter().find(|s| s.0 == full).map(|s| s.1);
+                let value = match (value, kind) {
+                    (toml::Value::String(text), Some(Kind::Text) | None) => text.clone(),
+                    (toml::Value::Integer(i), Some(Kind::Number | Kind::Count) | None) => {
+                        i.to_string()
+                    }
+                    (toml::Value::Float(f), Some(Kind::Number | Kind::Count) | None) => {
+                        f.to_string()
+                    }
+                    (other, Some(Kind::Text)) => {
                         return Err(file_error(format!(
-                            "`{section}.{key}` must be a number, is {}",
+                            "`{full}` must be a string, is {}",
+                            other.type_str()
+                        )));
+                    }
+                    (other, _) => {
+                        return Err(file_error(format!(
+                            "`{full}` must be a number, is {}",
                             other.type_str()
                         )));
                     }
                 };
-                changed.apply(&format!("{section}.{key}={value}"))?;
+                changed.apply(&format!("{full}={value}"))?;
             }
         }
         *self = changed;
@@ -209,12 +251,51 @@ impl Scenario {
             value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
         };
         match key {
+            "robot.urdf" => {
+                let (text, description) = read_urdf(Path::new(value))?;
+                self.description = description;
+                self.urdf_text = text;
+                self.urdf_path = Some(PathBuf::from(value));
+            }
+            "trial.duration" => {
+                let d = number()?;
+                if !(d > 0.0 && d <= MAX_DURATION_S) {
+                    return Err(bad(format!(
+                        "{d} s must be in (0, {MAX_DURATION_S}]: a trial keeps every 50 ms \
+                         frame in memory"
+                    )));
+                }
+                self.duration_s = d;
+            }
+            "trial.seeds" => self.seeds = parse_seeds(value).map_err(bad)?,
+            "trial.mode" => {
+                self.mode = match value {
+                    "simultaneous" => LearningMode::Simultaneous,
+                    "sensor-from-action" => LearningMode::SensorFromAction,
+                    "action-from-sensor" => LearningMode::ActionFromSensor,
+                    other => {
+                        return Err(bad(format!(
+                            "`{other}`; known: simultaneous, sensor-from-action, action-from-sensor"
+                        )));
+                    }
+                }
+            }
+            "learner.name" => {
+                if !crate::learners::names().any(|n| n == value) {
+                    return Err(bad(format!(
+                        "unknown learner `{value}`; known: {}",
+                        crate::learners::names().collect::<Vec<_>>().join(", ")
+                    )));
+                }
+                self.learner_name = value.into();
+            }
             "learner.gamma" => self.learner.gamma = number()?,
             "learner.beta" => self.learner.beta = number()?,
             "learner.t_start" => self.learner.t_start_s = number()?,
             "learner.sensor_degree" => self.learner.sensor_degree = count()?,
             "learner.action_degree" => self.learner.action_degree = count()?,
             "learner.sensor_window" => self.learner.sensor_window = count()?,
+            "learner.forward_degree" => self.learner.forward_degree = count()?,
             "camera.noise_px" => self.sim.camera.noise_px = number()?,
             "camera.width_px" => self.sim.camera.intrinsics.width_px = pixels()?,
             "camera.height_px" => self.sim.camera.intrinsics.height_px = pixels()?,
@@ -222,23 +303,17 @@ impl Scenario {
             "camera.vfov_deg" => self.sim.camera.intrinsics.vfov_deg = number()?,
             "camera.frame_period_s" => self.sim.camera.frame_period_s = number()?,
             "world.start_distance_m" => self.sim.start_distance_m = number()?,
-            "beacon.centre_m" => self.sim.beacon.band_centre_m = number()?,
-            "beacon.radius_m" => self.sim.beacon.radius_m = number()?,
             "world.friction" => self.sim.friction = number()?,
             "servo.torque_scale" => self.sim.servo.torque_scale = number()?,
             "servo.speed_scale" => self.sim.servo.speed_scale = number()?,
+            "beacon.centre_m" => self.sim.beacon.band_centre_m = number()?,
+            "beacon.radius_m" => self.sim.beacon.radius_m = number()?,
             "beacon.height_m" => self.sim.beacon.band_height_m = number()?,
-            "trial.duration" => {
-                let d = number()?;
-                if d <= 0.0 {
-                    return Err(bad(format!("{d} must be > 0")));
-                }
-                self.duration_s = d;
-            }
+            "physics.dt" => self.sim.dt_s = number()?,
             _ => {
                 return Err(SettingError::UnknownKey {
                     key: key.into(),
-                    known: SETTING_KEYS.join(", "),
+                    known: setting_keys().collect::<Vec<_>>().join(", "),
                 });
             }
         }
@@ -248,9 +323,107 @@ impl Scenario {
         Ok(())
     }
 
+    /// The value of a setting, as a scenario file writes it.
+    pub fn get(&self, key: &str) -> Option<toml::Value> {
+        use toml::Value::{Float, Integer, String as Text};
+        let count = |n: usize| Integer(n as i64);
+        Some(match key {
+            "robot.urdf" => Text(
+                self.urdf_path
+                    .as_ref()
+                    .map_or_else(String::new, |p| p.display().to_string()),
+            ),
+            "trial.duration" => Float(self.duration_s),
+            "trial.seeds" => Text(format!("{}..{}", self.seeds.0, self.seeds.1)),
+            "trial.mode" => Text(
+                match self.mode {
+                    LearningMode::Simultaneous => "simultaneous",
+                    LearningMode::SensorFromAction => "sensor-from-action",
+                    LearningMode::ActionFromSensor => "action-from-sensor",
+                }
+                .into(),
+            ),
+            "learner.name" => Text(self.learner_name.clone()),
+            "learner.gamma" => Float(self.learner.gamma),
+            "learner.beta" => Float(self.learner.beta),
+            "learner.t_start" => Float(self.learner.t_start_s),
+            "learner.sensor_degree" => count(self.learner.sensor_degree),
+            "learner.action_degree" => count(self.learner.action_degree),
+            "learner.sensor_window" => count(self.learner.sensor_window),
+            "learner.forward_degree" => count(self.learner.forward_degree),
+            "camera.noise_px" => Float(self.sim.camera.noise_px),
+            "camera.width_px" => Integer(self.sim.camera.intrinsics.width_px.into()),
+            "camera.height_px" => Integer(self.sim.camera.intrinsics.height_px.into()),
+            "camera.hfov_deg" => Float(self.sim.camera.intrinsics.hfov_deg),
+            "camera.vfov_deg" => Float(self.sim.camera.intrinsics.vfov_deg),
+            "camera.frame_period_s" => Float(self.sim.camera.frame_period_s),
+            "world.start_distance_m" => Float(self.sim.start_distance_m),
+            "world.friction" => Float(self.sim.friction),
+            "servo.torque_scale" => Float(self.sim.servo.torque_scale),
+            "servo.speed_scale" => Float(self.sim.servo.speed_scale),
+            "beacon.centre_m" => Float(self.sim.beacon.band_centre_m),
+            "beacon.radius_m" => Float(self.sim.beacon.radius_m),
+            "beacon.height_m" => Float(self.sim.beacon.band_height_m),
+            "physics.dt" => Float(self.sim.dt_s),
+            _ => return None,
+        })
+    }
+
+    /// Every setting as a scenario file (TOML): what a run records as its
+    /// `config.toml`, and what `--config` reads back to the same scenario. The
+    /// shipped robot's `robot.urdf` is left out (it is the default).
+    pub fn to_toml(&self) -> String {
+        let mut table = toml::Table::new();
+        for key in setting_keys() {
+            let Some(value) = self.get(key) else { continue };
+            if key == "robot.urdf" && self.urdf_path.is_none() {
+                continue;
+            }
+            let (section, name) = key.split_once('.').unwrap_or(("", key));
+            if let toml::Value::Table(t) = table
+                .entry(section)
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            {
+                t.insert(name.into(), value);
+            }
+        }
+        toml::to_string(&table).unwrap_or_default()
+    }
+
     /// A key identifying what the measured reference depends on (robot, world,
     /// controllers, camera and the protocols; not the learner).
     pub fn reference_key(&self) -> String {
         crate::reference::key(self)
     }
+}
+
+/// The robot of a URDF file.
+fn read_urdf(path: &Path) -> Result<(String, RobotDescription), SettingError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
+        file: file.clone(),
+        reason: e.to_string(),
+    })?;
+    let description = RobotDescription::from_urdf_str(&text).map_err(|e| SettingError::File {
+        file,
+        reason: e.to_string(),
+    })?;
+    Ok((text, description))
+}
+
+/// Seeds written `A..B` (B excluded, at least one seed).
+pub fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
+    let (a, b) = text
+        .split_once("..")
+        .ok_or_else(|| format!("`{text}` is not of the form A..B"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<u64>()
+            .map_err(|e| format!("`{text}`: {e}"))
+    };
+    let (a, b) = (parse(a)?, parse(b)?);
+    if a >= b {
+        return Err(format!("`{text}` holds no seed"));
+    }
+    Ok((a, b))
 }

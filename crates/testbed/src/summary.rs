@@ -234,6 +234,51 @@ impl Aggregate {
     }
 }
 
+/// One trial's row for a summary: its status and figures (NaN figures for a
+/// trial that could not run).
+pub fn trial_row(
+    seed: u64,
+    outcome: Result<&TrialOutcome, String>,
+    best: (f64, f64, f64),
+) -> (u64, TrialStatus, Figures) {
+    match outcome {
+        Ok(o) => (seed, TrialStatus::of(o), Figures::of(o, best)),
+        Err(e) => (seed, TrialStatus::Error(e), Figures::filled(f64::NAN)),
+    }
+}
+
+/// A run's `summary.json`: each trial's figures and status, how many ended
+/// ok and which did not, the mean and std over the ok ones, the paper's
+/// figures, the learner and its parameters, and how the reference was taken.
+pub fn summary_json(
+    rows: &[(u64, TrialStatus, Figures)],
+    learner: &str,
+    learner_parameters: serde_json::Value,
+    reference: &str,
+) -> serde_json::Value {
+    let aggregate = Aggregate::of(rows);
+    let trials: Vec<serde_json::Value> = rows
+        .iter()
+        .map(|(seed, status, f)| {
+            let mut v = serde_json::to_value(f).unwrap_or_default();
+            v["seed"] = (*seed).into();
+            v["status"] = status.to_string().into();
+            v
+        })
+        .collect();
+    serde_json::json!({
+        "learner": learner,
+        "learner_parameters": learner_parameters,
+        "trials": trials,
+        "trials_ok": aggregate.ok(),
+        "trials_failed": aggregate.failed_json(),
+        "mean": aggregate.mean,
+        "std": aggregate.std,
+        "paper": Figures::paper(),
+        "reference": reference,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

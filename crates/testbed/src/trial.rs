@@ -1,7 +1,10 @@
-//! One training trial on the simulated robot: the paper's behaviour drives the
-//! robot, the head camera reads the beacon at 20 Hz, and a calibration learner is
-//! fed the command in force over each frame and each reading, and nothing else.
-//! Ground truth is recorded beside it for judging, never shown to the learner.
+//! One training trial on the simulated robot, in two halves that never meet:
+//! the world (the paper's behaviour drives the robot, the head camera reads the
+//! beacon at 20 Hz) records each frame, and a calibration learner is fed each
+//! frame's command and reading, and nothing else. Ground truth is recorded
+//! beside them for judging, never shown to a learner. Because the behaviour never
+//! looks at a learner, one recording can feed any number of learners, live or
+//! replayed from disk.
 
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
 use rand::Rng;
@@ -24,6 +27,9 @@ pub enum TrialError {
     /// The learner could not be set up for this scenario.
     #[error("cannot set up the learner: {0}")]
     LearnerSetup(String),
+    /// The trial's world could not be recorded.
+    #[error("recording failed: {0}")]
+    Recording(String),
 }
 
 /// Settings of one trial.
@@ -39,32 +45,91 @@ pub struct TrialConfig {
     pub judge_every_s: f64,
 }
 
-/// One row of a trial's trace: one camera frame.
+/// What the world records of one camera frame: what a learner may see (the
+/// command in force over the frame and the reading at its end, if any) and,
+/// kept apart, the ground truth at the frame's end.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TraceRow {
-    /// Time at the end of the frame, s.
+pub struct FrameRecord {
+    /// Start of the frame, s.
     pub t_s: f64,
+    /// Length of the frame, s.
+    pub dt_s: f64,
     /// The command in force over the frame.
     pub command: f64,
-    /// The reading, if the frame had one, px.
+    /// The reading at the frame's end, px, if the frame had one.
     pub obs_px: Option<f64>,
-    /// Ground truth: distance to the beacon along the line, mm.
-    pub x_true_mm: f64,
-    /// The learner's dead-reckoned location.
-    pub x_a: Option<f64>,
-    /// The learner's location from the sensor model.
-    pub x_s: Option<f64>,
+    /// Ground truth at the frame's end (never shown to a learner).
+    pub truth: Truth,
 }
 
-/// A trial in progress: the robot, its world and its behaviour. The learner is
-/// passed to each step, so it can be checkpointed and swapped mid-trial.
+/// Ground truth at one moment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Truth {
+    /// Distance to the beacon along the line of approach, mm.
+    pub x_mm: f64,
+    /// Offset from the line of approach, mm (left positive).
+    pub lateral_mm: f64,
+    /// The torso's heading, rad (0 faces the beacon).
+    pub yaw_rad: f64,
+    /// Whether the torso was upright throughout the frame.
+    pub upright: bool,
+}
+
+impl FrameRecord {
+    /// End of the frame, s: when its reading was taken.
+    pub fn end_s(&self) -> f64 {
+        self.t_s + self.dt_s
+    }
+
+    /// The events a learner gets for this frame: the command over it, then its
+    /// reading (if any).
+    pub fn events(&self) -> impl Iterator<Item = Event> {
+        let command = Event::Command {
+            t_s: self.t_s,
+            dt_s: self.dt_s,
+            command: self.command,
+        };
+        let reading = self.obs_px.map(|obs_px| Event::Reading {
+            t_s: self.end_s(),
+            obs_px,
+        });
+        std::iter::once(command).chain(reading)
+    }
+}
+
+/// Feeds one frame's events to a learner. This is the only way learners are
+/// fed, live or replayed, so a replay is the live run, bit for bit.
+pub fn feed(learner: &mut dyn CalibrationLearner, frame: &FrameRecord) -> Result<(), EventError> {
+    frame.events().try_for_each(|e| learner.handle(e))
+}
+
+/// A trial's world as recorded: every frame, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recording {
+    /// The master seed.
+    pub seed: u64,
+    /// One record per camera frame.
+    pub frames: Vec<FrameRecord>,
+    /// Simulated seconds per wall-clock second while recording (NaN if not
+    /// recorded live).
+    pub realtime_factor: f64,
+}
+
+impl Recording {
+    /// Whether the robot tipped over at any point.
+    pub fn fell(&self) -> bool {
+        self.frames.iter().any(|f| !f.truth.upright)
+    }
+}
+
+/// The world of a trial in progress: the robot and its behaviour. It knows
+/// nothing of learners; [`feed`] gives its frames to any number of them.
 #[derive(Debug)]
 pub struct TrialRunner {
     config: TrialConfig,
     sim: QuadrupedSim,
     behaviour: Box<dyn Behaviour>,
     frame: u64,
-    fell: bool,
 }
 
 impl TrialRunner {
@@ -98,7 +163,6 @@ impl TrialRunner {
             sim,
             behaviour,
             frame: 0,
-            fell: false,
         })
     }
 
@@ -126,48 +190,103 @@ impl TrialRunner {
         self.frame >= self.total_frames()
     }
 
-    /// Whether the torso ever tipped (up-vector z <= 0.8).
-    pub fn fell(&self) -> bool {
-        self.fell
-    }
-
-    /// Runs one camera frame: the behaviour's command over it, the learner told
-    /// of the command and then of the reading (if any).
-    pub fn step_frame(
-        &mut self,
-        learner: &mut dyn CalibrationLearner,
-    ) -> Result<TraceRow, TrialError> {
+    /// Runs one camera frame: the behaviour's command over it, until the camera
+    /// has taken its picture.
+    pub fn step_frame(&mut self) -> Result<FrameRecord, TrialError> {
         let dt_s = self.frame_period_s();
         let t_s = self.frame as f64 * dt_s;
         let command = self.behaviour.command(t_s);
         self.sim.set_command(command).map_err(SimError::from)?;
+        let mut upright = true;
         let frame = loop {
             self.sim.step();
-            self.fell |= !self.sim.is_upright();
+            upright &= self.sim.is_upright();
             if let Some(f) = self.sim.take_frame() {
                 break f;
             }
         };
-        learner.handle(Event::Command { t_s, dt_s, command })?;
-        let t_end = t_s + dt_s;
         let obs_px = frame.obs_px.ok();
-        if let Some(obs_px) = obs_px {
-            learner.handle(Event::Reading { t_s: t_end, obs_px })?;
-        }
-        self.behaviour.observe(t_end, obs_px);
+        self.behaviour.observe(t_s + dt_s, obs_px);
         self.frame += 1;
-        Ok(TraceRow {
-            t_s: t_end,
+        Ok(FrameRecord {
+            t_s,
+            dt_s,
             command,
             obs_px,
-            x_true_mm: 1000.0 * self.sim.distance_along_line_m(),
-            x_a: learner.x_a(),
-            x_s: learner.x_s(),
+            truth: Truth {
+                x_mm: 1000.0 * self.sim.distance_along_line_m(),
+                lateral_mm: 1000.0 * self.sim.lateral_offset_m(),
+                yaw_rad: self.sim.torso().yaw_rad,
+                upright,
+            },
         })
+    }
+
+    /// Runs frames until the trial's time is up or `stop` says so (it sees the
+    /// behaviour after each frame), and returns them.
+    pub fn record_until(
+        &mut self,
+        mut stop: impl FnMut(&dyn Behaviour) -> bool,
+    ) -> Result<Vec<FrameRecord>, TrialError> {
+        // Grown as it goes rather than reserved for the whole trial, so that a
+        // long trial costs memory only as far as it runs.
+        let mut frames = Vec::with_capacity(self.total_frames().min(1 << 16) as usize);
+        while !self.finished() && !stop(self.behaviour.as_ref()) {
+            frames.push(self.step_frame()?);
+        }
+        Ok(frames)
     }
 }
 
-/// A finished trial.
+/// Records a whole trial: the world only, no learner.
+pub fn record(
+    description: &RobotDescription,
+    sim_config: SimConfig,
+    config: TrialConfig,
+) -> Result<Recording, TrialError> {
+    let started = std::time::Instant::now();
+    let mut runner = TrialRunner::new(description, sim_config, config)?;
+    let frames = runner.record_until(|_| false)?;
+    let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
+    Ok(Recording {
+        seed: config.seed,
+        frames,
+        realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
+    })
+}
+
+/// One row of a learner's trace: one camera frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TraceRow {
+    /// Time at the end of the frame, s.
+    pub t_s: f64,
+    /// The command in force over the frame.
+    pub command: f64,
+    /// The reading, if the frame had one, px.
+    pub obs_px: Option<f64>,
+    /// Ground truth: distance to the beacon along the line, mm.
+    pub x_true_mm: f64,
+    /// The learner's dead-reckoned location.
+    pub x_a: Option<f64>,
+    /// The learner's location from the sensor model.
+    pub x_s: Option<f64>,
+}
+
+impl TraceRow {
+    /// The row of `frame` once `learner` has been fed it.
+    pub fn of(frame: &FrameRecord, learner: &dyn CalibrationLearner) -> Self {
+        Self {
+            t_s: frame.end_s(),
+            command: frame.command,
+            obs_px: frame.obs_px,
+            x_true_mm: frame.truth.x_mm,
+            x_a: learner.x_a(),
+            x_s: learner.x_s(),
+        }
+    }
+}
+
+/// A learner's run over a recorded trial.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrialOutcome {
     /// The master seed.
@@ -184,11 +303,45 @@ pub struct TrialOutcome {
     pub last: Judgement,
     /// Whether the robot tipped over at any point.
     pub fell: bool,
-    /// Simulated seconds per wall-clock second.
+    /// Simulated seconds per wall-clock second of the recording's physics.
     pub realtime_factor: f64,
 }
 
-/// Runs a whole trial with `learner`.
+/// Runs `learner` over a recorded trial (no physics): feeds it every frame,
+/// judges its models every `judge_every_s` and at the end.
+pub fn learn(
+    recording: &Recording,
+    learner: &mut dyn CalibrationLearner,
+    reference: &Reference,
+    judge_every_s: f64,
+) -> Result<TrialOutcome, EventError> {
+    let frames = &recording.frames;
+    let frame_s = frames.first().map_or(0.05, |f| f.dt_s);
+    let judge_every = (judge_every_s / frame_s).round().max(1.0) as usize;
+    let mut trace = Vec::with_capacity(frames.len());
+    let mut over_time = Vec::new();
+    for (k, f) in frames.iter().enumerate() {
+        feed(learner, f)?;
+        let t_s = f.end_s();
+        if (k + 1) % judge_every == 0 {
+            over_time.push(reference.judge(t_s, learner));
+        }
+        trace.push(TraceRow::of(f, learner));
+    }
+    let end_s = frames.last().map_or(0.0, FrameRecord::end_s);
+    Ok(TrialOutcome {
+        seed: recording.seed,
+        last: reference.judge(end_s, learner),
+        trace,
+        over_time,
+        action_model: learner.action_model(),
+        sensor_model: learner.sensor_model(),
+        fell: recording.fell(),
+        realtime_factor: recording.realtime_factor,
+    })
+}
+
+/// Records a whole trial and runs `learner` over it.
 pub fn run_trial(
     description: &RobotDescription,
     sim_config: SimConfig,
@@ -196,29 +349,6 @@ pub fn run_trial(
     learner: &mut dyn CalibrationLearner,
     reference: &Reference,
 ) -> Result<TrialOutcome, TrialError> {
-    let started = std::time::Instant::now();
-    let mut runner = TrialRunner::new(description, sim_config, config)?;
-    let judge_every = (config.judge_every_s / runner.frame_period_s())
-        .round()
-        .max(1.0) as u64;
-    let mut trace = Vec::with_capacity(runner.total_frames() as usize);
-    let mut over_time = Vec::new();
-    while !runner.finished() {
-        let row = runner.step_frame(learner)?;
-        if runner.frame % judge_every == 0 {
-            over_time.push(reference.judge(row.t_s, learner));
-        }
-        trace.push(row);
-    }
-    let wall = started.elapsed().as_secs_f64();
-    Ok(TrialOutcome {
-        seed: config.seed,
-        last: reference.judge(config.duration_s, learner),
-        trace,
-        over_time,
-        action_model: learner.action_model(),
-        sensor_model: learner.sensor_model(),
-        fell: runner.fell(),
-        realtime_factor: config.duration_s / wall.max(1e-9),
-    })
+    let recording = record(description, sim_config, config)?;
+    Ok(learn(&recording, learner, reference, config.judge_every_s)?)
 }

@@ -1,0 +1,131 @@
+//! Tables of results as text: the paper's comparison table of a run (on the
+//! console and on its page), and any table as aligned text or Markdown.
+
+use testbed::summary::Figures;
+
+/// A run's figures beside the paper's, as rows of text (for the console, the
+/// page and the README): led by the ratio to the best possible polynomial.
+pub fn results_table(
+    mean: &Figures,
+    std: &Figures,
+    velocity_range: f64,
+    distance_range: f64,
+) -> (Vec<String>, Vec<Vec<String>>) {
+    let header = [
+        "figure",
+        "learned / best poly (ours / paper)",
+        "ours (mean +- std)",
+        "paper",
+        "best poly (ours / paper)",
+        "A0 (ours / paper)",
+    ]
+    .map(String::from)
+    .to_vec();
+    let paper = Figures::paper();
+    let ours = |m: f64, s: f64, range: f64| {
+        format!(
+            "{m:.1} +- {s:.1} ({:.1} % of {range:.0})",
+            100.0 * m / range
+        )
+    };
+    let pair = |a: f64, b: f64| format!("{a:.1} / {b:.1}");
+    let ratio = |a: f64, best_a: f64, b: f64, best_b: f64| {
+        format!("{:.2}x / {:.2}x", a / best_a, b / best_b)
+    };
+    let rows = vec![
+        vec![
+            "action RMSE (mm/s)".into(),
+            ratio(
+                mean.action_rmse_mm_s,
+                mean.action_best_rmse_mm_s,
+                paper.action_rmse_mm_s,
+                paper.action_best_rmse_mm_s,
+            ),
+            ours(mean.action_rmse_mm_s, std.action_rmse_mm_s, velocity_range),
+            format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
+            pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
+            pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
+        ],
+        vec![
+            "sensor RMSE (mm)".into(),
+            ratio(
+                mean.sensor_rmse_mm,
+                mean.sensor_best_rmse_mm,
+                paper.sensor_rmse_mm,
+                paper.sensor_best_rmse_mm,
+            ),
+            ours(mean.sensor_rmse_mm, std.sensor_rmse_mm, distance_range),
+            format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
+            pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
+            "-".into(),
+        ],
+        vec![
+            "consistency".into(),
+            "-".into(),
+            format!("{:.3} +- {:.3}", mean.consistency, std.consistency),
+            format!("{:.2} +- 0.06", paper.consistency),
+            "-".into(),
+            "-".into(),
+        ],
+    ];
+    (header, rows)
+}
+
+/// The table as aligned text, one line per row (the first column left-aligned,
+/// the others right-aligned).
+pub fn text(header: &[String], rows: &[Vec<String>]) -> String {
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            std::iter::once(header)
+                .chain(rows.iter().map(Vec::as_slice))
+                .map(|r| r.get(c).map_or(0, |s| s.chars().count()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut out = String::new();
+    for row in std::iter::once(header).chain(rows.iter().map(Vec::as_slice)) {
+        let cells: Vec<String> = row
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            .map(|(i, (c, &w))| {
+                if i == 0 {
+                    format!("{c:<w$}")
+                } else {
+                    format!("{c:>w$}")
+                }
+            })
+            .collect();
+        out.push_str(cells.join("  ").trim_end());
+        out.push('\n');
+    }
+    out
+}
+
+/// The table as Markdown.
+pub fn markdown(header: &[String], rows: &[Vec<String>]) -> String {
+    let line = |cells: &[String]| format!("| {} |\n", cells.join(" | "));
+    let mut out = line(header);
+    out.push_str(&line(&vec!["---".to_string(); header.len()]));
+    for r in rows {
+        out.push_str(&line(r));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_aligns_columns_and_markdown_has_a_rule() {
+        let header = vec!["a".to_string(), "bb".to_string()];
+        let rows = vec![vec!["long".to_string(), "1".to_string()]];
+        assert_eq!(text(&header, &rows), "a     bb\nlong   1\n");
+        assert_eq!(
+            markdown(&header, &rows),
+            "| a | bb |\n| --- | --- |\n| long | 1 |\n"
+        );
+    }
+}

@@ -1,0 +1,303 @@
+//! Recorded worlds on disk. A trial's recording is a dataset: what a learner
+//! may see (`events.csv`: each frame's command with its interval, and the
+//! reading at its end or none), the ground truth kept apart (`truth.csv`), and
+//! `dataset.json` naming the robot, the scenario (every setting), the seed, the
+//! format version, the measured reference models and what made it. Any learner
+//! can be replayed over it with no physics; numbers are written so that they
+//! read back to the same bits.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use crate::output;
+use crate::provenance::Provenance;
+use crate::reference::MeasuredModels;
+use crate::scenario::Scenario;
+use crate::trial::{FrameRecord, Recording, Truth};
+
+/// The format this code writes and reads.
+pub const FORMAT_VERSION: u32 = 1;
+
+const EVENTS_HEADER: &str = "t_s,dt_s,command,obs_px";
+const TRUTH_HEADER: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright";
+
+/// A dataset that cannot be read.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DatasetError {
+    /// A file is missing or unreadable.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file's contents are wrong.
+    #[error("{path}:{line}: {reason}")]
+    Malformed {
+        /// The file.
+        path: String,
+        /// The line (1-based; 0 for the whole file).
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// What a dataset says about itself.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DatasetMeta {
+    /// [`FORMAT_VERSION`] when it was written.
+    pub format_version: u32,
+    /// The robot's name (the URDF's `<robot name>`).
+    pub robot: String,
+    /// The scenario, every setting, as a scenario file (`config.toml`'s form).
+    pub scenario: String,
+    /// The trial's master seed.
+    pub seed: u64,
+    /// Frames in `events.csv` and `truth.csv`.
+    pub frames: usize,
+    /// The measured reference models of the scenario's robot and world.
+    pub reference: MeasuredModels,
+    /// What recorded it.
+    pub provenance: Provenance,
+}
+
+impl DatasetMeta {
+    /// The description of `recording`, a trial of `scenario` judged against
+    /// `reference`.
+    pub fn new(
+        scenario: &Scenario,
+        reference: &MeasuredModels,
+        recording: &Recording,
+        provenance: &Provenance,
+    ) -> Self {
+        Self {
+            format_version: FORMAT_VERSION,
+            robot: scenario.description.urdf.name.clone(),
+            scenario: scenario.to_toml(),
+            seed: recording.seed,
+            frames: recording.frames.len(),
+            reference: reference.clone(),
+            provenance: provenance.clone(),
+        }
+    }
+}
+
+/// A dataset read back: its description and its frames.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dataset {
+    /// What it says about itself.
+    pub meta: DatasetMeta,
+    /// The recorded frames.
+    pub recording: Recording,
+}
+
+/// Writes a recording as a dataset into `dir` (created if needed).
+pub fn write(dir: &Path, recording: &Recording, meta: &DatasetMeta) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let cell = |v: Option<f64>| v.map(|x| x.to_string()).unwrap_or_default();
+    output::write_csv(
+        &dir.join("events.csv"),
+        EVENTS_HEADER,
+        recording
+            .frames
+            .iter()
+            .map(|f| format!("{},{},{},{}", f.t_s, f.dt_s, f.command, cell(f.obs_px))),
+    )?;
+    output::write_csv(
+        &dir.join("truth.csv"),
+        TRUTH_HEADER,
+        recording.frames.iter().map(|f| {
+            let t = &f.truth;
+            format!(
+                "{},{},{},{},{}",
+                f.end_s(),
+                t.x_mm,
+                t.lateral_mm,
+                t.yaw_rad,
+                u8::from(t.upright)
+            )
+        }),
+    )?;
+    output::write_json(&dir.join("dataset.json"), meta)
+}
+
+fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> DatasetError + '_ {
+    move |source| DatasetError::Io {
+        path: path.display().to_string(),
+        source,
+    }
+}
+
+/// The rows of a CSV file with this exact header, split into cells.
+fn rows(path: &Path, header: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
+    let text = std::fs::read_to_string(path).map_err(io_error(path))?;
+    let malformed = |line: usize, reason: String| DatasetError::Malformed {
+        path: path.display().to_string(),
+        line,
+        reason,
+    };
+    let mut lines = text.lines().enumerate();
+    match lines.next() {
+        Some((_, h)) if h.trim() == header => {}
+        Some((_, h)) => return Err(malformed(1, format!("header `{h}`, expected `{header}`"))),
+        None => return Err(malformed(0, "empty file".into())),
+    }
+    let columns = header.split(',').count();
+    lines
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, l)| {
+            let cells: Vec<String> = l.split(',').map(|c| c.trim().to_string()).collect();
+            if cells.len() == columns {
+                Ok((i + 1, cells))
+            } else {
+                Err(malformed(
+                    i + 1,
+                    format!("{} cells, expected {columns}", cells.len()),
+                ))
+            }
+        })
+        .collect()
+}
+
+/// Reads a dataset from `dir`, checking its format version and that its files
+/// agree (same frames, times in order, finite numbers).
+pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
+    let meta_path = dir.join("dataset.json");
+    let text = std::fs::read_to_string(&meta_path).map_err(io_error(&meta_path))?;
+    let meta: DatasetMeta = serde_json::from_str(&text).map_err(|e| DatasetError::Malformed {
+        path: meta_path.display().to_string(),
+        line: e.line(),
+        reason: e.to_string(),
+    })?;
+    if meta.format_version != FORMAT_VERSION {
+        return Err(DatasetError::Malformed {
+            path: meta_path.display().to_string(),
+            line: 0,
+            reason: format!(
+                "format version {}, this testbed reads {FORMAT_VERSION}",
+                meta.format_version
+            ),
+        });
+    }
+    let (events_path, truth_path) = (dir.join("events.csv"), dir.join("truth.csv"));
+    let events = rows(&events_path, EVENTS_HEADER)?;
+    let truth = rows(&truth_path, TRUTH_HEADER)?;
+    let bad = |path: &Path, line: usize, reason: String| DatasetError::Malformed {
+        path: path.display().to_string(),
+        line,
+        reason,
+    };
+    if events.len() != truth.len() || events.len() != meta.frames {
+        return Err(bad(
+            dir,
+            0,
+            format!(
+                "{} event rows, {} truth rows, dataset.json says {} frames",
+                events.len(),
+                truth.len(),
+                meta.frames
+            ),
+        ));
+    }
+    let number = |path: &Path, line: usize, name: &str, cell: &str| {
+        cell.parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| {
+                bad(
+                    path,
+                    line,
+                    format!("{name} `{cell}` is not a finite number"),
+                )
+            })
+    };
+    let mut frames = Vec::with_capacity(events.len());
+    let mut clock_s = 0.0;
+    for ((line, e), (tline, t)) in events.iter().zip(&truth) {
+        let (t_s, dt_s, command) = (
+            number(&events_path, *line, "t_s", &e[0])?,
+            number(&events_path, *line, "dt_s", &e[1])?,
+            number(&events_path, *line, "command", &e[2])?,
+        );
+        let obs_px = match e[3].as_str() {
+            "" => None,
+            cell => Some(number(&events_path, *line, "obs_px", cell)?),
+        };
+        if dt_s <= 0.0 || t_s < clock_s - 1e-9 {
+            return Err(bad(
+                &events_path,
+                *line,
+                format!("frame [{t_s}, +{dt_s}] s is out of order"),
+            ));
+        }
+        clock_s = t_s + dt_s;
+        let upright = match t[4].as_str() {
+            "1" => true,
+            "0" => false,
+            other => return Err(bad(&truth_path, *tline, format!("upright `{other}`"))),
+        };
+        frames.push(FrameRecord {
+            t_s,
+            dt_s,
+            command,
+            obs_px,
+            truth: Truth {
+                x_mm: number(&truth_path, *tline, "x_true_mm", &t[1])?,
+                lateral_mm: number(&truth_path, *tline, "lateral_mm", &t[2])?,
+                yaw_rad: number(&truth_path, *tline, "yaw_rad", &t[3])?,
+                upright,
+            },
+        });
+    }
+    Ok(Dataset {
+        recording: Recording {
+            seed: meta.seed,
+            frames,
+            realtime_factor: f64::NAN,
+        },
+        meta,
+    })
+}
+
+/// The datasets named by `paths`: each path is a dataset itself, or a run
+/// directory whose `trial-*` subdirectories are datasets (in seed order).
+pub fn find(paths: &[PathBuf]) -> Result<Vec<PathBuf>, DatasetError> {
+    let mut found = Vec::new();
+    for path in paths {
+        if path.join("dataset.json").is_file() {
+            found.push(path.clone());
+            continue;
+        }
+        let entries = std::fs::read_dir(path).map_err(io_error(path))?;
+        let mut trials: Vec<(u64, PathBuf)> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.join("dataset.json").is_file())
+            .filter_map(|p| {
+                let seed = p
+                    .file_name()?
+                    .to_str()?
+                    .strip_prefix("trial-")?
+                    .parse()
+                    .ok()?;
+                Some((seed, p))
+            })
+            .collect();
+        if trials.is_empty() {
+            return Err(DatasetError::Malformed {
+                path: path.display().to_string(),
+                line: 0,
+                reason: "neither a dataset (dataset.json) nor a run directory of trial-*/ datasets"
+                    .into(),
+            });
+        }
+        trials.sort();
+        found.extend(trials.into_iter().map(|t| t.1));
+    }
+    Ok(found)
+}

@@ -1,0 +1,152 @@
+//! Runs a learner over recorded worlds, with no physics: any dataset a `train`
+//! run wrote (its `trial-*` directories), or such a run directory whole. The
+//! learner gets exactly the events it would have got live, so for the same
+//! learner and settings the models are the live run's, bit for bit.
+//!
+//! `cargo run --release --example replay -- runs/train-X --learner batch-ml --out DIR`
+//!
+//! Writes DIR/config.toml, DIR/summary.json and, per dataset, DIR/trial-<seed>/
+//! with the learner's trace.csv, errors_over_time.csv and models.json: the same
+//! form as a `train` run.
+
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+use anyhow::{Context, Result, bail, ensure};
+use clap::Parser;
+use rayon::prelude::*;
+use testbed::dataset::{self, Dataset};
+use testbed::experiment;
+use testbed::output;
+use testbed::provenance::Provenance;
+use testbed::scenario::Scenario;
+use testbed::summary::{self, Aggregate};
+
+/// Replay recorded trials to a learner.
+#[derive(Debug, Parser)]
+struct Args {
+    /// Datasets, or run directories holding trial-*/ datasets.
+    #[arg(required_unless_present = "learner")]
+    datasets: Vec<PathBuf>,
+    /// The learner; `list` prints the available ones (default: the dataset's).
+    #[arg(long)]
+    learner: Option<String>,
+    /// A learner setting as key=value on top of the dataset's (repeatable),
+    /// e.g. learner.gamma=0.995.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// Results directory (default: runs/replay-<unix time>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The scenario a dataset was recorded in, with `args`' learner settings on top.
+fn scenario_of(dataset: &Dataset, args: &Args) -> Result<Scenario> {
+    let mut scenario = Scenario::paper()?;
+    scenario
+        .apply_toml("dataset.json's scenario", &dataset.meta.scenario)
+        .context("the dataset's scenario")?;
+    for s in &args.set {
+        ensure!(
+            s.trim_start().starts_with("learner."),
+            "`{s}`: a replay can change only learner settings; the world is recorded"
+        );
+        scenario.set(s)?;
+    }
+    if let Some(name) = &args.learner {
+        scenario.set(&format!("learner.name={name}"))?;
+    }
+    Ok(scenario)
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    if scasm_testbed::list_learners_if_asked(args.learner.as_deref()) {
+        return Ok(());
+    }
+    let paths = dataset::find(&args.datasets)?;
+    let datasets: Vec<Dataset> = paths
+        .iter()
+        .map(|p| dataset::read(p))
+        .collect::<Result<_, _>>()?;
+    let scenarios: Vec<Scenario> = datasets
+        .iter()
+        .map(|d| scenario_of(d, &args))
+        .collect::<Result<_>>()?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| scasm_testbed::default_out("replay"));
+    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let made_by = Provenance::current();
+    output::write_config(&out, &scenarios[0], &made_by)?;
+    let learner = scenarios[0].learner_name.clone();
+    println!(
+        "Replaying {} recorded trials to learner {learner}...",
+        datasets.len()
+    );
+
+    let started = std::time::Instant::now();
+    let write_errors = Mutex::new(Vec::new());
+    let results: Vec<_> = datasets
+        .par_iter()
+        .zip(&scenarios)
+        .map(|(d, scenario)| {
+            let outcome = experiment::learn(scenario, &d.meta.reference, &d.recording, &learner);
+            if let Ok(o) = &outcome {
+                let dir = out.join(format!("trial-{}", d.meta.seed));
+                if let Err(e) = output::write_learner_run(&dir, o) {
+                    if let Ok(mut v) = write_errors.lock() {
+                        v.push(e.to_string());
+                    }
+                }
+            }
+            (d.meta.seed, outcome)
+        })
+        .collect();
+    let wall_s = started.elapsed().as_secs_f64();
+    if let Some(e) = write_errors.lock().ok().and_then(|v| v.first().cloned()) {
+        bail!("writing a trial's files: {e}");
+    }
+
+    let models = &datasets[0].meta.reference;
+    let best = summary::best_possible(&models.reference(), &scenarios[0].learner);
+    let rows: Vec<_> = results
+        .iter()
+        .map(|(seed, r)| summary::trial_row(*seed, r.as_ref().map_err(|e| e.to_string()), best))
+        .collect();
+    let aggregate = Aggregate::of(&rows);
+    output::write_json(
+        &out.join("summary.json"),
+        &summary::summary_json(
+            &rows,
+            &learner,
+            testbed::learners::parameters(&learner, &scenarios[0]),
+            &models.describe(),
+        ),
+    )?;
+    let (header, table) = report::table::results_table(
+        &aggregate.mean,
+        &aggregate.std,
+        models.velocity_range_mm_s(),
+        models.distance_range_mm(),
+    );
+    println!("\n{}", report::table::text(&header, &table));
+    println!("{}", aggregate.describe());
+    println!(
+        "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads; results in {}",
+        rows.len(),
+        datasets
+            .iter()
+            .filter_map(|d| d.recording.frames.last().map(|f| f.end_s()))
+            .sum::<f64>(),
+        rayon::current_num_threads(),
+        out.display()
+    );
+    ensure!(
+        aggregate.ok() > 0,
+        "no trial finished ok: {}",
+        aggregate.describe()
+    );
+    Ok(())
+}
