@@ -84,3 +84,47 @@ fn a_trial_is_bit_identical_per_seed() {
     assert_eq!(run(3), run(3));
     assert_ne!(run(3), run(4));
 }
+
+/// The learners beyond the paper, in the synthetic world where the truth is
+/// known exactly and the camera's 1 px of noise is the only error: the
+/// errors-in-variables correction and the batch fit must each beat SCASM's
+/// sensor model, and the batch fit SCASM's action model too (mean over the
+/// seeds), with consistent scales.
+#[test]
+fn the_learners_beyond_the_paper_beat_scasm_where_the_truth_is_known() {
+    use scasm::{BatchMl, BatchMlConfig, ScasmConfig, SensorFit};
+    let config = SyntheticTrialConfig::default();
+    let eiv = ScasmConfig {
+        sensor_fit: SensorFit::Corrected,
+        ..Default::default()
+    };
+    let figures = |make: &dyn Fn() -> Box<dyn CalibrationLearner>| {
+        let (mut a, mut s, mut c) = (Vec::new(), Vec::new(), Vec::new());
+        for seed in SEEDS {
+            let mut learner = make();
+            let out = synthetic::run_trial(learner.as_mut(), &config, seed).expect("valid");
+            a.push(out.action_error.expect("action").rmse);
+            s.push(out.sensor_error.expect("sensor").rmse);
+            c.push(out.consistency.expect("both"));
+        }
+        (mean(&a), mean(&s), mean(&c))
+    };
+    let scasm = figures(&|| Box::new(Scasm::default()));
+    let corrected = figures(&|| {
+        Box::new(
+            Scasm::new(eiv.validate().expect("valid"), scasm::Mode::Simultaneous).expect("mode"),
+        )
+    });
+    let batch = figures(&|| {
+        let c = BatchMlConfig {
+            online: eiv,
+            ..Default::default()
+        };
+        Box::new(BatchMl::new(c.validate().expect("valid")))
+    });
+    eprintln!("scasm {scasm:?}\nscasm-eiv {corrected:?}\nbatch-ml {batch:?}");
+    assert!(corrected.1 < scasm.1, "scasm-eiv's sensor model");
+    assert!(batch.1 < scasm.1, "batch-ml's sensor model");
+    assert!(batch.0 < scasm.0, "batch-ml's action model");
+    assert!(batch.2 < 0.05, "batch-ml's consistency {:.3}", batch.2);
+}

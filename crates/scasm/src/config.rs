@@ -3,6 +3,7 @@
 //! paper does not have), checked once into [`ScasmParams`] which code can trust.
 
 use crate::MAX_REGRESSORS;
+use crate::eiv_fit::MAX_EIV_DEGREE;
 use crate::error::ConfigError;
 
 /// SCASM's hyper-parameters as a user writes them. Check them with
@@ -41,12 +42,11 @@ pub struct ScasmConfig {
     /// regressing location on a noisy reading (errors in variables). Each such
     /// point is discounted by `gamma^k`, so the fit's memory in time is unchanged.
     pub sensor_window: usize,
-    /// How S is fitted: as the paper does (location on reading), or through the
-    /// forward model (reading on location), which removes the
-    /// errors-in-variables bias.
+    /// How S is fitted: as the paper does, or with the reading's noise
+    /// corrected for (no errors-in-variables bias).
     pub sensor_fit: SensorFit,
-    /// Degree of the forward model `obs ~ g(x)` when `sensor_fit` is
-    /// [`SensorFit::Forward`], 1..=MAX_REGRESSORS.
+    /// Degree of the forward sensor model `obs ~ g(x)` a batch learner fits,
+    /// 1..=MAX_REGRESSORS.
     pub forward_degree: usize,
 }
 
@@ -62,9 +62,10 @@ pub enum SensorFit {
     /// reading biases it (errors in variables).
     #[default]
     Inverse,
-    /// The reading regressed on location (its noise is then in the target),
-    /// inverted into S on an even grid of locations.
-    Forward,
+    /// The same regression with the reading's noise corrected for (corrected
+    /// score), its variance estimated from the readings themselves: no
+    /// errors-in-variables bias. Degree at most 5.
+    Corrected,
 }
 
 /// The largest [`ScasmConfig::sensor_window`].
@@ -118,6 +119,12 @@ impl ScasmConfig {
         if !(self.command_scale.is_finite() && self.command_scale > 0.0) {
             return Err(ConfigError::CommandScale {
                 command_scale: self.command_scale,
+            });
+        }
+        if self.sensor_fit == SensorFit::Corrected && self.sensor_degree > MAX_EIV_DEGREE {
+            return Err(ConfigError::SensorDegree {
+                degree: self.sensor_degree,
+                max: MAX_EIV_DEGREE,
             });
         }
         if !(1..=MAX_REGRESSORS).contains(&self.forward_degree) {
@@ -198,7 +205,7 @@ impl ScasmParams {
     pub fn sensor_fit(&self) -> SensorFit {
         self.0.sensor_fit
     }
-    /// Degree of the forward model (with [`SensorFit::Forward`]).
+    /// Degree of a batch learner's forward sensor model.
     pub fn forward_degree(&self) -> usize {
         self.0.forward_degree
     }

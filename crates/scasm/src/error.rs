@@ -66,15 +66,19 @@ pub enum ConfigError {
         /// The value given.
         solve_every_s: f64,
     },
-    /// The batch learner needs at least one iteration and one round.
-    #[error(
-        "batch-ml needs iterations >= 1 and noise_rounds >= 1, got {iterations} and {noise_rounds}"
-    )]
+    /// The batch learner needs at least one iteration.
+    #[error("batch-ml needs iterations >= 1, got {iterations}")]
     Iterations {
-        /// Iterations per round.
+        /// Iterations per solve.
         iterations: usize,
-        /// Rounds.
-        noise_rounds: usize,
+    },
+    /// A batch learner noise setting must be finite and positive.
+    #[error("batch-ml's {name} must be finite and > 0, got {value}")]
+    BatchNoise {
+        /// Which setting.
+        name: &'static str,
+        /// The value given.
+        value: f64,
     },
     /// A model given to a one-sided mode has a non-finite coefficient.
     #[error("the given {which} model has a non-finite coefficient")]

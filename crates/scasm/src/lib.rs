@@ -32,8 +32,8 @@ mod action_fit;
 #[cfg(feature = "std")]
 mod batch;
 mod config;
+mod eiv_fit;
 mod error;
-mod forward_fit;
 mod learner;
 mod poly_fit;
 mod polynomial;

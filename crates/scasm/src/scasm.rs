@@ -3,8 +3,8 @@
 
 use crate::action_fit::ActionFit;
 use crate::config::{ScasmParams, SensorFit};
+use crate::eiv_fit::{EivFit, NoiseEstimate};
 use crate::error::{ConfigError, EventError};
-use crate::forward_fit::ForwardFit;
 use crate::learner::{CalibrationLearner, Event};
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
@@ -55,12 +55,20 @@ pub struct Scasm {
     window: ReadingWindow,
 }
 
-/// The sensor fit in use (see [`SensorFit`]).
+/// The sensor fit in use (see [`SensorFit`]). A learner holds one, inline:
+/// boxing the larger variant would need an allocator, which the crate does not.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[allow(clippy::large_enum_variant)]
 enum SensorFitState {
     Inverse(PolynomialFit),
-    Forward(ForwardFit),
+    Corrected {
+        fit: EivFit,
+        noise: NoiseEstimate,
+        /// Readings averaged per point: the noise of a point's mean reading
+        /// is the readings' over this.
+        window: usize,
+    },
 }
 
 impl SensorFitState {
@@ -70,28 +78,41 @@ impl SensorFitState {
         let gamma = libm::pow(params.gamma(), params.sensor_window() as f64);
         match params.sensor_fit() {
             SensorFit::Inverse => Self::Inverse(PolynomialFit::new(params.sensor_degree(), gamma)),
-            SensorFit::Forward => Self::Forward(ForwardFit::new(params.forward_degree(), gamma)),
+            SensorFit::Corrected => Self::Corrected {
+                fit: EivFit::new(params.sensor_degree(), gamma),
+                noise: NoiseEstimate::default(),
+                window: params.sensor_window(),
+            },
+        }
+    }
+
+    /// Takes every reading as it comes (for the noise estimate).
+    fn observe(&mut self, t_s: f64, obs_px: f64, gamma: f64) {
+        if let Self::Corrected { noise, .. } = self {
+            noise.observe(t_s, obs_px, gamma);
         }
     }
 
     fn add(&mut self, obs_px: f64, x: f64) {
         match self {
             Self::Inverse(f) => f.add(obs_px, x),
-            Self::Forward(f) => f.add(obs_px, x),
+            Self::Corrected { fit, .. } => fit.add(obs_px, x),
         }
     }
 
-    fn sensor_model(&self, degree: usize) -> Option<Polynomial> {
+    fn sensor_model(&self) -> Option<Polynomial> {
         match self {
             Self::Inverse(f) => f.polynomial(),
-            Self::Forward(f) => f.sensor_model(degree),
+            Self::Corrected { fit, noise, window } => {
+                fit.sensor_model(noise.variance()? / *window as f64)
+            }
         }
     }
 
     fn points(&self) -> u64 {
         match self {
             Self::Inverse(f) => f.points(),
-            Self::Forward(f) => f.points(),
+            Self::Corrected { fit, .. } => fit.points(),
         }
     }
 }
@@ -224,6 +245,7 @@ impl Scasm {
         if obs_px <= 0.0 {
             return Err(EventError::NonPositiveReading { obs_px });
         }
+        self.sensor_fit.observe(t_s, obs_px, self.params.gamma());
         match self.mode {
             Mode::Simultaneous => {
                 if t_s > self.params.t_start_s() {
@@ -278,13 +300,7 @@ impl Scasm {
             let n = w.count as f64;
             self.sensor_fit.add(w.obs_sum / n, w.x_a_sum / n);
             self.window = ReadingWindow::default();
-            // A forward fit that cannot be inverted this time keeps the last
-            // model; the paper's fit is either determined or not.
-            match self.sensor_fit.sensor_model(self.params.sensor_degree()) {
-                Some(m) => self.sensor_model = Some(m),
-                None if matches!(self.sensor_fit, SensorFitState::Forward(_)) => {}
-                None => self.sensor_model = None,
-            }
+            self.sensor_model = self.sensor_fit.sensor_model();
         }
     }
 }

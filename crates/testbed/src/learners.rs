@@ -25,13 +25,14 @@ pub const LEARNERS: [(&str, &str); 4] = [
         "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, 5)",
     ),
     (
-        "scasm-fwd",
-        "SCASM whose sensor fit regresses the reading on x_a and inverts it: no errors-in-variables bias",
+        "scasm-eiv",
+        "SCASM whose sensor fit corrects for the reading noise, estimated from the readings: \
+         no errors-in-variables bias",
     ),
     (
         "batch-ml",
         "maximum likelihood over the whole trial: path, A and the forward sensor model jointly, \
-         initialised from scasm-fwd",
+         initialised from scasm-eiv",
     ),
 ];
 
@@ -52,8 +53,8 @@ fn scasm_config(name: &str, scenario: &Scenario) -> Option<ScasmConfig> {
             ..base
         }),
         "scasm" => Some(base),
-        "scasm-fwd" => Some(ScasmConfig {
-            sensor_fit: SensorFit::Forward,
+        "scasm-eiv" => Some(ScasmConfig {
+            sensor_fit: SensorFit::Corrected,
             ..base
         }),
         _ => None,
@@ -64,7 +65,7 @@ fn scasm_config(name: &str, scenario: &Scenario) -> Option<ScasmConfig> {
 fn batch_config(scenario: &Scenario) -> BatchMlConfig {
     BatchMlConfig {
         online: ScasmConfig {
-            sensor_fit: SensorFit::Forward,
+            sensor_fit: SensorFit::Corrected,
             ..scenario.learner
         },
         ..BatchMlConfig::default()

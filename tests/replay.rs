@@ -1,0 +1,175 @@
+//! Recorded worlds: a trial written as a dataset and read back gives any
+//! learner the same events, so a replay equals the live run bit for bit; every
+//! named learner learns from a recording; a damaged dataset is refused with the
+//! file and line; and a run's config.toml reads back to the same scenario.
+
+use std::path::PathBuf;
+use std::sync::OnceLock;
+
+use scasm::Polynomial;
+use testbed::dataset::{self, DatasetMeta};
+use testbed::experiment;
+use testbed::learners;
+use testbed::provenance::Provenance;
+use testbed::reference::MeasuredModels;
+use testbed::scenario::Scenario;
+use testbed::trial::Recording;
+
+fn setup() -> &'static (Scenario, MeasuredModels, Recording) {
+    static SETUP: OnceLock<(Scenario, MeasuredModels, Recording)> = OnceLock::new();
+    SETUP.get_or_init(|| {
+        let mut scenario = Scenario::paper().expect("scenario");
+        scenario.set("trial.duration=150").expect("duration");
+        let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
+        let models =
+            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
+        let recording = experiment::record(&scenario, &models, 2).expect("recording");
+        (scenario, models, recording)
+    })
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+fn bits(p: Option<Polynomial>) -> Vec<u64> {
+    p.map(|p| p.coeffs().iter().map(|c| c.to_bits()).collect())
+        .unwrap_or_default()
+}
+
+fn written(name: &str) -> PathBuf {
+    let (scenario, models, recording) = setup();
+    let dir = temp_dir(name);
+    let meta = DatasetMeta::new(scenario, models, recording, &Provenance::current());
+    dataset::write(&dir, recording, &meta).expect("write");
+    dir
+}
+
+#[test]
+fn a_replayed_dataset_gives_the_live_models_bit_for_bit() {
+    let (scenario, models, recording) = setup();
+    let dir = written("replay-bits");
+    let back = dataset::read(&dir).expect("read");
+    assert_eq!(back.recording.frames, recording.frames);
+    assert_eq!(
+        (&back.meta.reference.action, &back.meta.reference.sensor),
+        (&models.action, &models.sensor)
+    );
+    for name in ["scasm", "scasm-paper"] {
+        let live = experiment::learn(scenario, models, recording, name).expect("live");
+        let replayed =
+            experiment::learn(scenario, models, &back.recording, name).expect("replayed");
+        assert_eq!(
+            bits(live.action_model),
+            bits(replayed.action_model),
+            "{name}"
+        );
+        assert_eq!(
+            bits(live.sensor_model),
+            bits(replayed.sensor_model),
+            "{name}"
+        );
+        let x_a = |o: &testbed::trial::TrialOutcome| -> Vec<u64> {
+            o.trace
+                .iter()
+                .map(|r| r.x_a.unwrap_or(0.0).to_bits())
+                .collect()
+        };
+        assert_eq!(x_a(&live), x_a(&replayed), "{name}");
+    }
+}
+
+#[test]
+fn every_named_learner_learns_both_models_from_a_recording() {
+    let (scenario, models, recording) = setup();
+    let reference = models.reference();
+    for name in learners::names() {
+        let out = experiment::learn(scenario, models, recording, name).expect(name);
+        let a0 = testbed::metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
+        let action = out.last.action_rmse_mm_s.expect("action model");
+        let sensor = out.last.sensor_rmse_mm.expect("sensor model");
+        // Every learner ends the paper's 150 s with both models, finite and
+        // sane: the action model within three times A0's error, the sensor
+        // model within a tenth of the 2.4 m range. How good each is, is the
+        // benchmark's business.
+        assert!(
+            action < 3.0 * a0,
+            "{name}: action {action:.1} vs A0 {a0:.1}"
+        );
+        assert!(sensor < 240.0, "{name}: sensor {sensor:.1} mm");
+    }
+    let e = learners::build("no-such-learner", scenario, &reference)
+        .err()
+        .expect("unknown");
+    assert!(e.contains("batch-ml"), "the error lists the learners: {e}");
+}
+
+#[test]
+fn a_damaged_dataset_is_refused_naming_file_and_line() {
+    let damage = |name: &str, file: &str, edit: &dyn Fn(String) -> String, needle: &str| {
+        let dir = written(name);
+        let path = dir.join(file);
+        let text = std::fs::read_to_string(&path).expect("read");
+        std::fs::write(&path, edit(text)).expect("write");
+        let e = dataset::read(&dir)
+            .expect_err("must be refused")
+            .to_string();
+        assert!(e.contains(needle), "`{e}` should mention `{needle}`");
+    };
+    damage(
+        "damaged-header",
+        "events.csv",
+        &|t| t.replacen("t_s,dt_s", "time,dt_s", 1),
+        "events.csv:1",
+    );
+    damage(
+        "damaged-cell",
+        "events.csv",
+        &|t| {
+            let mut lines: Vec<String> = t.lines().map(String::from).collect();
+            lines[5] = "0.2,0.05,NaN,30".into();
+            lines.join("\n")
+        },
+        "events.csv:6",
+    );
+    damage(
+        "damaged-rows",
+        "truth.csv",
+        &|t| t.lines().take(10).collect::<Vec<_>>().join("\n"),
+        "truth rows",
+    );
+    damage(
+        "damaged-version",
+        "dataset.json",
+        &|t| t.replacen("\"format_version\": 1", "\"format_version\": 99", 1),
+        "format version 99",
+    );
+    let dir = written("damaged-missing");
+    std::fs::remove_file(dir.join("truth.csv")).expect("remove");
+    let e = dataset::read(&dir).expect_err("missing file").to_string();
+    assert!(e.contains("truth.csv"), "{e}");
+}
+
+#[test]
+fn a_runs_config_reads_back_to_the_same_scenario() {
+    let mut s = Scenario::paper().expect("scenario");
+    for setting in [
+        "learner.name=batch-ml",
+        "learner.gamma=0.995",
+        "trial.seeds=3..9",
+        "trial.mode=simultaneous",
+        "camera.noise_px=1.3",
+        "servo.torque_scale=0.8",
+    ] {
+        s.set(setting).expect(setting);
+    }
+    let mut back = Scenario::paper().expect("scenario");
+    back.apply_toml("config.toml", &s.to_toml())
+        .expect("reads back");
+    for key in testbed::scenario::setting_keys() {
+        assert_eq!(back.get(key), s.get(key), "{key}");
+    }
+    assert_eq!(back.reference_key(), s.reference_key());
+}
