@@ -36,6 +36,10 @@ struct Args {
     /// Seeds as a range A..B (B excluded).
     #[arg(long, default_value = "0..5")]
     seeds: String,
+    /// The learner for every run; `list` prints the available ones
+    /// [learner.name].
+    #[arg(long)]
+    learner: Option<String>,
     /// Run only shard K of N (1-based), e.g. 3/8.
     #[arg(long)]
     shard: Option<String>,
@@ -175,6 +179,9 @@ fn write_outputs(results: &Results, dir: &Path) -> Result<()> {
 
 fn main() -> Result<()> {
     let args = Args::parse();
+    if scasm_testbed::list_learners_if_asked(args.learner.as_deref()) {
+        return Ok(());
+    }
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
 
@@ -201,7 +208,20 @@ fn main() -> Result<()> {
     let axes = axes(&args)?;
     let keys: Vec<String> = axes.iter().map(|a| a.key.clone()).collect();
     let seeds = parse_seeds(&args.seeds)?;
-    let base = args.scenario.scenario()?;
+    let base = args.scenario.scenario_with(
+        &args
+            .learner
+            .iter()
+            .map(|l| format!("learner.name={l}"))
+            .collect::<Vec<_>>(),
+    )?;
+    // The base scenario, every setting; each run's own are the axes' values in
+    // sweep.csv (the command line is in the file's header).
+    testbed::output::write_config(
+        &args.out,
+        &base,
+        &testbed::provenance::Provenance::current(),
+    )?;
     let mut runs = sweep::runs(&axes, &seeds);
     let total = runs.len();
     if let Some(spec) = &args.shard {

@@ -18,15 +18,19 @@ fn the_paper_scenario_file_is_the_default() {
 
 #[test]
 fn every_shipped_scenario_loads() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenarios");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenarios");
     let mut n = 0;
-    for entry in std::fs::read_dir(dir).expect("scenarios") {
-        let path = entry.expect("entry").path();
-        Scenario::from_settings(None, Some(&path), &[])
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        n += 1;
+    for dir in [root.clone(), root.join("suite")] {
+        for entry in std::fs::read_dir(dir).expect("scenarios") {
+            let path = entry.expect("entry").path();
+            if path.extension().is_some_and(|x| x == "toml") {
+                Scenario::from_settings(None, Some(&path), &[])
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                n += 1;
+            }
+        }
     }
-    assert!(n >= 2);
+    assert!(n >= 9, "{n} scenario files");
 }
 
 fn refused(text: &str, needle: &str) {

@@ -3,6 +3,9 @@
 
 use std::path::Path;
 
+/// Where a chart's legend goes (plotters' own type).
+pub use plotters::prelude::SeriesLabelPosition;
+
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

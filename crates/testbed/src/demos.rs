@@ -67,9 +67,14 @@ pub fn run_demos(
     let far_m = models.sensor.last().map_or(3.6, |s| s.distance_mm / 1000.0);
     let mut walk_sim = scenario.sim;
     walk_sim.start_distance_m = far_m + CONSTANT_WALK_LEAD_M;
+    // The walk crosses the whole test range: it stops at the nearest measured
+    // point's reading.
     let walk = ConstantWalk {
         command: CONSTANT_COMMAND,
-        near_obs_px: behaviour.near_obs_px,
+        near_obs_px: models
+            .sensor
+            .first()
+            .map_or(behaviour.near_obs_px, |s| s.obs_px),
         arrived: false,
     };
     let reference = models.reference();

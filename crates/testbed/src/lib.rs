@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod behaviour;
+pub mod benchmark;
 pub mod dataset;
 pub mod demos;
 pub mod experiment;

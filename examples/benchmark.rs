@@ -1,0 +1,284 @@
+//! Every learner on every scenario of the suite (`assets/scenarios/suite/`) and
+//! every seed, in parallel: each world is simulated once and fed to all the
+//! learners. Writes DIR/leaderboard.csv (a row per learner, scenario and seed),
+//! leaderboard.md and index.html (the summary table and a figure of the ratios
+//! to the best possible polynomials), and each scenario's config-<name>.toml.
+//!
+//! `cargo run --release --example benchmark -- [--learners a,b] [--scenarios x,y]
+//!  [--seeds A..B] [--out DIR]`
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+use anyhow::{Context, Result, bail};
+use clap::Parser;
+use report::page::Page;
+use report::plot::{Chart, Mark, Series, colours};
+use testbed::benchmark::{self, Entry};
+use testbed::experiment::{self, Job};
+use testbed::learners;
+use testbed::output;
+use testbed::provenance::Provenance;
+use testbed::reference::{self, MeasuredModels};
+use testbed::scenario;
+use testbed::summary;
+
+/// Benchmark learners across a suite of scenarios.
+#[derive(Debug, Parser)]
+struct Args {
+    /// Learners, comma-separated (default: all; `list` prints them).
+    #[arg(long, value_delimiter = ',')]
+    learners: Vec<String>,
+    /// Scenarios of the suite by name, comma-separated (default: all).
+    #[arg(long, value_delimiter = ',')]
+    scenarios: Vec<String>,
+    /// Seeds as a range A..B, B excluded.
+    #[arg(long, default_value = "0..5")]
+    seeds: String,
+    /// A setting applied to every scenario as key=value (repeatable), e.g.
+    /// trial.duration=60.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    set: Vec<String>,
+    /// The suite's directory.
+    #[arg(long, default_value = benchmark::SUITE_DIR)]
+    suite: PathBuf,
+    /// Results directory (default: runs/benchmark-<unix time>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Where measured reference models are cached.
+    #[arg(long, default_value = "runs/.cache")]
+    cache: PathBuf,
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    if args.learners.iter().any(|l| l == "list") {
+        scasm_testbed::list_learners_if_asked(Some("list"));
+        return Ok(());
+    }
+    let learners: Vec<String> = if args.learners.is_empty() {
+        learners::names().map(String::from).collect()
+    } else {
+        args.learners.clone()
+    };
+    if let Some(unknown) = learners
+        .iter()
+        .find(|l| !learners::names().any(|n| n == *l))
+    {
+        bail!(
+            "unknown learner `{unknown}`; known: {}",
+            learners::names().collect::<Vec<_>>().join(", ")
+        );
+    }
+    let (first, end) =
+        scenario::parse_seeds(&args.seeds).map_err(|e| anyhow::anyhow!("--seeds: {e}"))?;
+    let seeds: Vec<u64> = (first..end).collect();
+    let suite = benchmark::load_suite(&args.suite, &args.scenarios, &args.set)?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| scasm_testbed::default_out("benchmark"));
+    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let made_by = Provenance::current();
+    for s in &suite {
+        let dir = out.join(format!("config-{}", s.name));
+        std::fs::create_dir_all(&dir)?;
+        output::write_config(&dir, &s.scenario, &made_by)?;
+    }
+    let started = std::time::Instant::now();
+
+    // One reference per distinct robot and world.
+    let mut references: BTreeMap<String, MeasuredModels> = BTreeMap::new();
+    for s in &suite {
+        let key = s.scenario.reference_key();
+        if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
+            println!("reference models for {} ({})...", s.name, slot.key());
+            slot.insert(reference::measured_models(&s.scenario, Some(&args.cache))?);
+        }
+    }
+    let mut jobs: Vec<Job<'_>> = Vec::new();
+    for s in &suite {
+        let models = &references[&s.scenario.reference_key()];
+        for &seed in &seeds {
+            for l in &learners {
+                jobs.push(Job {
+                    scenario: &s.scenario,
+                    models,
+                    seed,
+                    learner: l,
+                });
+            }
+        }
+    }
+    println!(
+        "{} learners x {} scenarios x {} seeds = {} trials ({} worlds to simulate) on {} threads",
+        learners.len(),
+        suite.len(),
+        seeds.len(),
+        jobs.len(),
+        suite.len() * seeds.len(),
+        rayon::current_num_threads()
+    );
+    let scenario_of = |job: &Job<'_>| {
+        suite
+            .iter()
+            .find(|s| std::ptr::eq(&s.scenario, job.scenario))
+            .map_or(String::new(), |s| s.name.clone())
+    };
+    let bar = scasm_testbed::progress_bar(jobs.len() as u64, "trials");
+    let entries = Mutex::new(Vec::new());
+    experiment::run_jobs(&jobs, &|i, result| {
+        let job = &jobs[i];
+        let best = summary::best_possible(&job.models.reference(), &job.scenario.learner);
+        let (seed, status, figures) =
+            summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
+        if let Ok(mut v) = entries.lock() {
+            v.push(Entry {
+                learner: job.learner.to_string(),
+                scenario: scenario_of(job),
+                seed,
+                status,
+                figures,
+            });
+        }
+        bar.inc(1);
+    });
+    bar.finish();
+    let mut entries = entries.into_inner().unwrap_or_else(|p| p.into_inner());
+    let order = |e: &Entry| {
+        (
+            suite.iter().position(|s| s.name == e.scenario),
+            learners.iter().position(|l| *l == e.learner),
+            e.seed,
+        )
+    };
+    entries.sort_by_key(order);
+    benchmark::write_leaderboard_csv(&out.join("leaderboard.csv"), &entries)?;
+
+    let names: Vec<String> = suite.iter().map(|s| s.name.clone()).collect();
+    let cells = benchmark::cells(&entries, &learners, &names);
+    let (header, rows) = benchmark::summary_table(&cells);
+    println!("\n{}", report::table::text(&header, &rows));
+    let ranges = |name: &str| {
+        suite
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| &references[&s.scenario.reference_key()])
+            .map_or((f64::NAN, f64::NAN), |m| {
+                (m.velocity_range_mm_s(), m.distance_range_mm())
+            })
+    };
+    let misses = benchmark::below_paper(&cells, &ranges);
+    let failed: Vec<String> = entries
+        .iter()
+        .filter(|e| !e.status.is_ok())
+        .map(|e| {
+            format!(
+                "{} on {} seed {} ({})",
+                e.learner, e.scenario, e.seed, e.status
+            )
+        })
+        .collect();
+    let mut notes = vec![format!(
+        "{} learners x {} scenarios x seeds {}..{}, {} s trials; the figures are means over each \
+         cell's ok trials (+- their std); ratios are to the best polynomial through the measured \
+         model (quartic action, cubic sensor).",
+        learners.len(),
+        suite.len(),
+        first,
+        end,
+        suite.first().map_or(f64::NAN, |s| s.scenario.duration_s)
+    )];
+    notes.push(if failed.is_empty() {
+        "Every trial finished ok.".into()
+    } else {
+        format!("Trials not ok (not in any mean): {}.", failed.join("; "))
+    });
+    notes.push(if misses.is_empty() {
+        "Every learner is at the paper's level (action <= 4.9 %, sensor <= 2.9 % of range, \
+         consistency <= 0.08) on every scenario."
+            .into()
+    } else {
+        format!("Below the paper's level: {}.", misses.join("; "))
+    });
+    for n in &notes[1..] {
+        println!("{n}");
+    }
+    let markdown = format!(
+        "{}\n\n{}",
+        report::table::markdown(&header, &rows),
+        notes.join("\n\n")
+    );
+    output::write_atomic(&out.join("leaderboard.md"), markdown.as_bytes())?;
+
+    // The figure: each learner's ratio to the best polynomial, per scenario.
+    let palette = [
+        colours::BLUE,
+        colours::RED,
+        colours::GREEN,
+        colours::ORANGE,
+        colours::PURPLE,
+        colours::BLACK,
+    ];
+    let chart = |stem: &str, what: &str, ratio: &dyn Fn(&benchmark::Cell) -> f64| {
+        let series = learners
+            .iter()
+            .enumerate()
+            .map(|(k, l)| {
+                let points = names
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, n)| {
+                        cells
+                            .iter()
+                            .find(|c| &c.learner == l && &c.scenario == n)
+                            .map(|c| ((i + 1) as f64, ratio(c)))
+                    })
+                    .collect();
+                Series::new(l, Mark::Line, palette[k % palette.len()], points)
+            })
+            .collect();
+        let chart = Chart {
+            title: format!("{what} error / best possible polynomial"),
+            x_label: format!(
+                "scenario: {}",
+                names
+                    .iter()
+                    .enumerate()
+                    .map(|(i, n)| format!("{} {n}", i + 1))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            y_label: "ratio (1 = the best possible)".into(),
+            series,
+            legend: report::plot::SeriesLabelPosition::UpperRight,
+        };
+        chart.save(&out.join(stem)).map(|_| stem.to_string())
+    };
+    report::plot::register_font()?;
+    let figures = vec![
+        (
+            chart("leaderboard-action", "Action", &|c| c.action_ratio())?,
+            "Each learner's mean action error over the best quartic's, per scenario.".to_string(),
+        ),
+        (
+            chart("leaderboard-sensor", "Sensor", &|c| c.sensor_ratio())?,
+            "Each learner's mean sensor error over the best cubic's, per scenario.".to_string(),
+        ),
+    ];
+    Page {
+        title: "Learners side by side".into(),
+        paragraphs: notes,
+        header,
+        rows,
+        figures,
+    }
+    .write(&out.join("index.html"))?;
+    println!(
+        "\nwhole benchmark {:.0} s wall; results in {}",
+        started.elapsed().as_secs_f64(),
+        out.display()
+    );
+    Ok(())
+}
