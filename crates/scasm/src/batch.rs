@@ -77,7 +77,7 @@ pub struct BatchMlConfig {
     /// times the frame's length: how far the robot may stray from `A(C) dt`.
     pub process_noise: f64,
     /// How much larger (in standard deviation) the process noise is within
-    /// [`TRANSIENT_S`] of a change of command, while the gait changes over.
+    /// half a second of a change of command, while the gait changes over.
     pub transient_noise: f64,
 }
 
