@@ -223,6 +223,10 @@ fn unknown_or_out_of_range_settings_are_named() {
     let e = s.set("camera.noise_px=NaN").expect_err("not finite");
     assert!(e.to_string().contains("camera.noise_px"), "{e}");
     assert!(s.set("noequals").is_err());
+    // A trial the machine cannot hold is refused at the door, not by the
+    // allocator.
+    let e = s.set("trial.duration=1e12").expect_err("too long");
+    assert!(e.to_string().contains("trial.duration"), "{e}");
     // Nothing of the refused settings stuck.
     assert_eq!(s.learner.gamma, 0.999);
     s.set("learner.beta=0.05").expect("valid");

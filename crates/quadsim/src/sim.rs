@@ -595,6 +595,14 @@ impl QuadrupedSim {
         *self.world.bodies[self.head].position() * self.camera_in_head
     }
 
+    /// The robot's multibody (for tests of the physics itself).
+    pub fn multibody(&self) -> Option<&rapier3d::dynamics::Multibody> {
+        self.world
+            .multibody_joints
+            .get(self.joints[0][0])
+            .map(|(mb, _)| mb)
+    }
+
     /// The physics world, read-only (for rendering and sensors).
     pub fn world(&self) -> &PhysicsWorld {
         &self.world
