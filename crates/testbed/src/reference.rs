@@ -16,9 +16,10 @@ use crate::scenario::Scenario;
 /// Readings per distance in the stand-and-read protocol (the paper's 100).
 pub const MEASURE_READINGS: usize = 100;
 
-/// Bumped whenever a protocol changes in a way its settings do not show, so
-/// that cached references measured the old way are measured again.
-const PROTOCOL_VERSION: u32 = 2;
+/// Bumped whenever a protocol or the physics changes in a way the settings do
+/// not show, so that cached references measured the old way are measured again
+/// (3: the patched rapier3d's mass matrix).
+const PROTOCOL_VERSION: u32 = 3;
 
 /// The measured models with their spreads, as the protocols give them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
