@@ -36,14 +36,13 @@ fn main() -> Result<()> {
         "command", "velocity mm/s", "std mm/s", "min", "max", "upright"
     );
     for m in &measured {
-        let t = &m.timings_mm_s;
         println!(
             "{:>8.0} {:>14.1} {:>10.1} {:>10.1} {:>10.1} {:>8}",
             m.command,
             m.velocity_mm_s,
             m.std_mm_s,
-            t.iter().copied().fold(f64::INFINITY, f64::min),
-            t.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            m.min_mm_s(),
+            m.max_mm_s(),
             m.upright
         );
     }

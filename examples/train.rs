@@ -151,12 +151,7 @@ fn main() -> Result<()> {
         "no trial finished ok: {}",
         aggregate.describe()
     );
-    let (header, table) = report::table::results_table(
-        &aggregate.mean,
-        &aggregate.std,
-        models.velocity_range_mm_s(),
-        models.distance_range_mm(),
-    );
+    let (header, table) = report::table::results_table(&aggregate, &models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("{}", models.describe());

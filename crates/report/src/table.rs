@@ -1,16 +1,18 @@
 //! Tables of results as text: the paper's comparison table of a run (on the
 //! console and on its page), and any table as aligned text or Markdown.
 
-use testbed::summary::Figures;
+use testbed::reference::MeasuredModels;
+use testbed::summary::{Aggregate, Figures};
 
 /// A run's figures beside the paper's, as rows of text (for the console, the
 /// page and the README): led by the ratio to the best possible polynomial.
 pub fn results_table(
-    mean: &Figures,
-    std: &Figures,
-    velocity_range: f64,
-    distance_range: f64,
+    aggregate: &Aggregate,
+    models: &MeasuredModels,
 ) -> (Vec<String>, Vec<Vec<String>>) {
+    let (mean, std) = (&aggregate.mean, &aggregate.std);
+    let (velocity_range, distance_range) =
+        (models.velocity_range_mm_s(), models.distance_range_mm());
     let header = [
         "figure",
         "learned / best poly (ours / paper)",

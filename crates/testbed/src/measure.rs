@@ -62,6 +62,24 @@ pub struct MeasuredVelocity {
     pub upright: bool,
 }
 
+impl MeasuredVelocity {
+    /// The slowest timing (most negative), mm/s.
+    pub fn min_mm_s(&self) -> f64 {
+        self.timings_mm_s
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The fastest timing, mm/s.
+    pub fn max_mm_s(&self) -> f64 {
+        self.timings_mm_s
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+}
+
 /// Mean and population standard deviation.
 fn mean_std(values: &[f64]) -> (f64, f64) {
     let n = values.len().max(1) as f64;

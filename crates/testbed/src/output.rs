@@ -96,14 +96,13 @@ pub fn write_measured_action(dir: &Path, rows: &[MeasuredVelocity]) -> std::io::
         &dir.join("measured_action.csv"),
         "command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright",
         rows.iter().map(|m| {
-            let t = &m.timings_mm_s;
             format!(
                 "{},{},{},{},{},{}",
                 m.command,
                 m.velocity_mm_s,
                 m.std_mm_s,
-                t.iter().copied().fold(f64::INFINITY, f64::min),
-                t.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                m.min_mm_s(),
+                m.max_mm_s(),
                 m.upright
             )
         }),
