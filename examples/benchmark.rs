@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 use clap::Parser;
 use report::page::Page;
 use report::plot::{Chart, Mark, Series, colours};
@@ -75,11 +75,7 @@ fn main() -> Result<()> {
         scenario::parse_seeds(&args.seeds).map_err(|e| anyhow::anyhow!("--seeds: {e}"))?;
     let seeds: Vec<u64> = (first..end).collect();
     let suite = benchmark::load_suite(&args.suite, &args.scenarios, &args.set)?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| scasm_testbed::default_out("benchmark"));
-    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let out = scasm_testbed::create_run_dir(args.out.as_deref(), "benchmark")?;
     let made_by = Provenance::current();
     for s in &suite {
         let dir = out.join(format!("config-{}", s.name));

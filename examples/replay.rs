@@ -73,11 +73,7 @@ fn main() -> Result<()> {
         .iter()
         .map(|d| scenario_of(d, &args))
         .collect::<Result<_>>()?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| scasm_testbed::default_out("replay"));
-    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let out = scasm_testbed::create_run_dir(args.out.as_deref(), "replay")?;
     let made_by = Provenance::current();
     output::write_config(&out, &scenarios[0], &made_by)?;
     let learner = scenarios[0].learner_name.clone();

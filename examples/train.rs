@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-use anyhow::{Context, Result, bail, ensure};
+use anyhow::{Result, bail, ensure};
 use clap::Parser;
 use report::page::Page;
 use scasm_testbed::{ScenarioArgs, TrialArgs};
@@ -79,11 +79,7 @@ fn main() -> Result<()> {
     }
     let scenario = args.scenario.scenario_with(&args.trials.settings())?;
     let seeds: Vec<u64> = (scenario.seeds.0..scenario.seeds.1).collect();
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| scasm_testbed::default_out("train"));
-    std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
+    let out = scasm_testbed::create_run_dir(args.out.as_deref(), "train")?;
     let made_by = Provenance::current();
     output::write_config(&out, &scenario, &made_by)?;
     let started = std::time::Instant::now();

@@ -2,7 +2,7 @@
 //! and a run's trials, `--learner list`, and run directories.
 #![warn(missing_docs)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use testbed::scenario::{Scenario, SettingError};
 
@@ -91,13 +91,21 @@ pub fn list_learners_if_asked(learner: Option<&str>) -> bool {
     true
 }
 
-/// `runs/<kind>-<unix time>`: a fresh run directory's default name.
-pub fn default_out(kind: &str) -> PathBuf {
-    let t = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0);
-    PathBuf::from(format!("runs/{kind}-{t}"))
+/// A run's directory, created: `out`, or `runs/<kind>-<unix time>`.
+pub fn create_run_dir(out: Option<&Path>, kind: &str) -> anyhow::Result<PathBuf> {
+    let dir = out.map_or_else(
+        || {
+            let t = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map(|d| d.as_secs())
+                .unwrap_or(0);
+            PathBuf::from(format!("runs/{kind}-{t}"))
+        },
+        Path::to_path_buf,
+    );
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| anyhow::anyhow!("creating {}: {e}", dir.display()))?;
+    Ok(dir)
 }
 
 /// A progress bar over `len` items of `what`.
