@@ -1,7 +1,10 @@
-//! Guards the patched rapier3d (vendor/rapier3d, see its PATCH.md): the mass
-//! matrices it assembles on each link's own columns equal upstream's dense
-//! assembly to 1e-9, on the robot standing, walking fast forwards, backwards
-//! and turning.
+//! Guards the patched rapier3d (vendor/rapier3d, see vendor/PATCH.md): the
+//! mass matrices it assembles on each link's own columns equal upstream's dense
+//! assembly, on the robot standing and walking fast forwards, backwards and
+//! slowly: the plain one to the bit, the one with the Coriolis terms within
+//! 1e-9 of the largest entry (rapier computes in f32, whose resolution for an
+//! entry of 1 is 1.2e-7; the differences seen are at most 9.3e-10 of entries
+//! up to 1.6, i.e. 5.8e-10 of the largest).
 
 use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
 
@@ -23,12 +26,14 @@ fn compare(sim: &QuadrupedSim, what: &str) {
             .fold(0.0f64, |m, (x, y)| m.max(f64::from((x - y).abs())));
         eprintln!("{what}, {name}: largest difference {worst:e} of entries up to {scale:e}");
         for (x, y) in a.iter().zip(b.iter()) {
+            // rapier3d computes in f32 (resolution 1.2e-7 of an entry): the two
+            // assemblies sum the same terms in another order. The differences
+            // seen are at most 9.3e-10 with entries up to 1.6; the bound is
+            // 1e-9 of the largest entry, as the issue asks, far inside f32's
+            // rounding of sums of that size.
             let diff = f64::from((x - y).abs());
-            // Within 1e-9 of the largest entry (about 1.6): the plain mass
-            // matrix comes out the same to the bit, the Coriolis one within
-            // 1e-9 (f32 sums in another order).
             assert!(
-                diff <= 1e-9 * scale.max(1.0),
+                diff <= 1e-9 * scale,
                 "{what}, {name}: {x} vs {y} (largest entry {scale})"
             );
         }
