@@ -56,14 +56,41 @@ impl CameraIntrinsics {
     /// The direction (camera frame, not normalised) of the ray through the centre
     /// of pixel `(col, row)`.
     pub fn pixel_ray(&self, col: u32, row: u32) -> [f64; 3] {
-        let u = f64::from(col) + 0.5 - 0.5 * f64::from(self.width_px);
-        let v = f64::from(row) + 0.5 - 0.5 * f64::from(self.height_px);
-        [1.0, -u / self.fx(), -v / self.fy()]
+        self.pixel_rays().ray(col, row)
+    }
+
+    /// The rays through pixels, with the focal lengths worked out once (for
+    /// loops over many pixels).
+    pub fn pixel_rays(&self) -> PixelRays {
+        PixelRays {
+            half_size: [
+                0.5 * f64::from(self.width_px),
+                0.5 * f64::from(self.height_px),
+            ],
+            focal: [self.fx(), self.fy()],
+        }
     }
 
     /// The horizontal angle (rad, left positive) of image column position `u`.
     pub fn bearing_of_column(&self, u: f64) -> f64 {
         ((0.5 * f64::from(self.width_px) - u) / self.fx()).atan()
+    }
+}
+
+/// The rays through a camera's pixels (see [`CameraIntrinsics::pixel_rays`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PixelRays {
+    half_size: [f64; 2],
+    focal: [f64; 2],
+}
+
+impl PixelRays {
+    /// The direction (camera frame, not normalised) of the ray through the centre
+    /// of pixel `(col, row)`.
+    pub fn ray(&self, col: u32, row: u32) -> [f64; 3] {
+        let u = f64::from(col) + 0.5 - self.half_size[0];
+        let v = f64::from(row) + 0.5 - self.half_size[1];
+        [1.0, -u / self.focal[0], -v / self.focal[1]]
     }
 }
 

@@ -1,7 +1,7 @@
 //! Guards the patched rapier3d (vendor/rapier3d, see vendor/PATCH.md): the
-//! mass matrices it assembles on each link's own columns equal upstream's dense
-//! assembly, on the robot standing and walking fast forwards, backwards and
-//! slowly: the plain one to the bit, the one with the Coriolis terms within
+//! body jacobians and mass matrices it computes on each link's own columns
+//! equal upstream's dense code's, on the robot standing and walking fast forwards, backwards and
+//! slowly: the jacobians and the plain mass matrix to the bit, the one with the Coriolis terms within
 //! 1e-9 of the largest entry (rapier computes in f32, whose resolution for an
 //! entry of 1 is 1.2e-7; the differences seen are at most 9.3e-10 of entries
 //! up to 1.6, i.e. 5.8e-10 of the largest).
@@ -15,6 +15,13 @@ fn compare(sim: &QuadrupedSim, what: &str) {
     let (mut sparse, mut dense) = (mb.clone(), mb.clone());
     sparse.assemble_mass_matrices(dt, bodies, false);
     dense.assemble_mass_matrices(dt, bodies, true);
+    for link in 0..mb.num_links() {
+        assert_eq!(
+            sparse.body_jacobian(link),
+            dense.body_jacobian(link),
+            "{what}: body jacobian of link {link}"
+        );
+    }
     let (s, d) = (sparse.mass_matrices(), dense.mass_matrices());
     for (a, b, name) in [(s.0, d.0, "mass matrix"), (s.1, d.1, "with Coriolis")] {
         assert_eq!(a.shape(), b.shape());

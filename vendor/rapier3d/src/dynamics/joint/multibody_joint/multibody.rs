@@ -47,24 +47,109 @@ fn concat_rb_mass_matrix(mass: Vector, inertia: Real) -> SMatrix<Real, SPATIAL_D
     result
 }
 
+/// PATCH (scasm-testbed): `lu.solve_mut(b)` for one right-hand side: the same
+/// operations in the same order as nalgebra's (row swaps, then the unit lower
+/// and the upper triangular solves column by column), on the factors' raw
+/// column-major storage and a copy of `b` on the stack, without building a view
+/// per column. A column whose coefficient is zero is skipped: it would add
+/// `-0 * l`, which changes no value (at most the sign of a zero). Systems larger
+/// than the stack copy use nalgebra's own solve.
+pub(crate) fn lu_solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
+    lu: &LU<Real, Dyn, Dyn>,
+    b: &mut na::Matrix<Real, Dyn, C, S>,
+) -> bool {
+    const MAX_DIM: usize = 64;
+    let n = lu.lu_internal().nrows();
+    if n > MAX_DIM || b.ncols() != 1 {
+        return lu.solve_mut(b);
+    }
+    assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
+    lu.p().permute_rows(b);
+    let mut x = [0.0 as Real; MAX_DIM];
+    for (i, xi) in x[..n].iter_mut().enumerate() {
+        *xi = b[i];
+    }
+    let x = &mut x[..n];
+    let f = lu.lu_internal().as_slice();
+    // L y = P b, L with a unit diagonal.
+    for i in 0..n.saturating_sub(1) {
+        let coeff = x[i];
+        if coeff != 0.0 {
+            let below = &f[i * n + i + 1..(i + 1) * n];
+            for (xr, l) in x[i + 1..].iter_mut().zip(below) {
+                *xr = -coeff * *l + *xr;
+            }
+        }
+    }
+    // U x = y.
+    let mut solved = true;
+    for i in (0..n).rev() {
+        let column = &f[i * n..i * n + i + 1];
+        let diag = column[i];
+        if diag == 0.0 {
+            solved = false;
+            break;
+        }
+        let coeff = x[i] / diag;
+        x[i] = coeff;
+        if coeff != 0.0 {
+            for (xr, u) in x[..i].iter_mut().zip(&column[..i]) {
+                *xr = -coeff * *u + *xr;
+            }
+        }
+    }
+    for (i, xi) in x.iter().enumerate() {
+        b[i] = *xi;
+    }
+    solved
+}
+
 /// PATCH (scasm-testbed): `out[c, c] += J[:, c]^T m J[:, c]` over the columns
 /// `c` of `cols` (where `J` can be non-zero): `J^T m J` for a jacobian that is
-/// zero elsewhere, at `(|c| / n)^2` of the dense quadratic form's cost.
+/// zero elsewhere, at `(|c| / n)^2` of the dense quadratic form's cost. The
+/// products and dot products are nalgebra's, operation for operation (so the
+/// same bits), on the matrices' raw column-major storage.
 fn sparse_quadform(
     out: &mut DMatrix<Real>,
     m: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
     j: &Jacobian<Real>,
     cols: &[usize],
-    mj: &mut Vec<SVector<Real, SPATIAL_DIM>>,
+    mj: &mut Vec<[Real; SPATIAL_DIM]>,
 ) {
+    let (m, j) = (m.as_slice(), j.as_slice());
     mj.clear();
-    mj.extend(cols.iter().map(|&c| m * j.column(c)));
+    mj.extend(cols.iter().map(|&c| {
+        let x = &j[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
+        // `m * x` as nalgebra's gemv: column by column.
+        let mut y = [0.0; SPATIAL_DIM];
+        for (yr, mr) in y.iter_mut().zip(&m[..SPATIAL_DIM]) {
+            *yr = *mr * x[0];
+        }
+        for k in 1..SPATIAL_DIM {
+            let column = &m[SPATIAL_DIM * k..SPATIAL_DIM * (k + 1)];
+            for (yr, mr) in y.iter_mut().zip(column) {
+                *yr = *mr * x[k] + *yr;
+            }
+        }
+        y
+    }));
     for &a in cols {
-        let ja = j.column(a);
+        let ja = &j[SPATIAL_DIM * a..SPATIAL_DIM * (a + 1)];
         for (mj_b, &b) in mj.iter().zip(cols) {
-            out[(a, b)] += ja.dot(mj_b);
+            out[(a, b)] += spatial_dot(ja, mj_b);
         }
     }
+}
+
+/// PATCH (scasm-testbed): nalgebra's dot product of two 6-vectors, in its
+/// order (a running sum from zero).
+#[inline]
+fn spatial_dot(a: &[Real], b: &[Real]) -> Real {
+    let mut sum = 0.0;
+    for (x, y) in a[..SPATIAL_DIM].iter().zip(&b[..SPATIAL_DIM]) {
+        sum += *x * *y;
+    }
+    sum
 }
 
 #[cfg(feature = "dim3")]
@@ -168,7 +253,7 @@ pub struct Multibody {
     /// PATCH (scasm-testbed): workspace of `M J` columns for the sparse
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
-    mj_workspace: Vec<SVector<Real, SPATIAL_DIM>>,
+    mj_workspace: Vec<[Real; SPATIAL_DIM]>,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -691,7 +776,7 @@ impl Multibody {
 
         self.augmented_mass_indices
             .with_rearranged_rows_mut(&mut self.accelerations, |accs| {
-                self.acc_inv_augmented_mass.solve_mut(accs);
+                lu_solve_mut(&self.acc_inv_augmented_mass, accs);
             });
 
         if check_implicit_coriolis_divergence {
@@ -754,7 +839,7 @@ impl Multibody {
                 self.augmented_mass_indices.with_rearranged_rows_mut(
                     &mut self.accelerations,
                     |accs| {
-                        self.inv_augmented_mass.solve_mut(accs);
+                        lu_solve_mut(&self.inv_augmented_mass, accs);
                     },
                 );
 
@@ -860,7 +945,14 @@ impl Multibody {
                     let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
 
                     let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                    link_j_v.gemm(1.0, &shift_tr, &parent_j_w, 1.0);
+                    // PATCH (scasm-testbed): the gemm's column by column
+                    // products (the same bits), on the parent's columns only:
+                    // the others of `parent_j_w` are zero.
+                    for &c in &self.link_dofs[parent_id] {
+                        link_j_v
+                            .column_mut(c)
+                            .gemv(1.0, &shift_tr, &parent_j_w.column(c), 1.0);
+                    }
                 }
             } else {
                 self.body_jacobians[i].fill(0.0);
@@ -882,7 +974,12 @@ impl Multibody {
                 let (mut link_j_v, link_j_w) =
                     link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
                 let shift_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+                // PATCH (scasm-testbed): on the link's columns only.
+                for &c in &self.link_dofs[i] {
+                    link_j_v
+                        .column_mut(c)
+                        .gemv(1.0, &shift_tr, &link_j_w.column(c), 1.0);
+                }
             }
         }
     }
@@ -1103,10 +1200,11 @@ impl Multibody {
                 i_coriolis_dt_w.zip_apply(coriolis_w, |o, x| *o = x * dt * rb_inertia);
             }
             // PATCH (scasm-testbed): `J^T (I C dt)` on the link's columns.
+            let (j, icdt) = (rb_j.as_slice(), self.i_coriolis_dt.as_slice());
             for &a in &self.link_dofs[i] {
-                let ja = rb_j.column(a);
+                let ja = &j[SPATIAL_DIM * a..];
                 for &b in &self.link_dofs[i] {
-                    self.acc_augmented_mass[(a, b)] += ja.dot(&self.i_coriolis_dt.column(b));
+                    self.acc_augmented_mass[(a, b)] += spatial_dot(ja, &icdt[SPATIAL_DIM * b..]);
                 }
             }
         }
@@ -1181,15 +1279,70 @@ impl Multibody {
         (&self.augmented_mass, &self.acc_augmented_mass)
     }
 
-    /// PATCH (scasm-testbed): assembles the mass matrices as a step does, with
-    /// the body jacobians of the current configuration (for tests).
+    /// PATCH (scasm-testbed): computes the body jacobians of the current
+    /// configuration and assembles the mass matrices as a step does, with the
+    /// patched code or with upstream's dense code (for tests).
     #[doc(hidden)]
     pub fn assemble_mass_matrices(&mut self, dt: Real, bodies: &RigidBodySet, dense: bool) {
-        self.update_body_jacobians();
         if dense {
+            self.update_body_jacobians_dense();
             self.update_mass_matrix_dense(dt, bodies);
         } else {
+            self.update_body_jacobians();
             self.update_mass_matrix(dt, bodies);
+        }
+    }
+
+    /// PATCH (scasm-testbed): upstream's dense body jacobians, kept unchanged
+    /// to test [`Self::update_body_jacobians`] against.
+    fn update_body_jacobians_dense(&mut self) {
+        for i in 0..self.links.len() {
+            let link = &self.links[i];
+
+            if self.body_jacobians[i].ncols() != self.ndofs {
+                // TODO: use a resize instead.
+                self.body_jacobians[i] = Jacobian::zeros(self.ndofs);
+            }
+
+            let parent_to_world;
+
+            if i != 0 {
+                let parent_id = link.parent_internal_id;
+                let parent_link = &self.links[parent_id];
+                parent_to_world = parent_link.local_to_world;
+
+                let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
+                link_j.copy_from(parent_j);
+
+                {
+                    let mut link_j_v = link_j.fixed_rows_mut::<DIM>(0);
+                    let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
+
+                    let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
+                    link_j_v.gemm(1.0, &shift_tr, &parent_j_w, 1.0);
+                }
+            } else {
+                self.body_jacobians[i].fill(0.0);
+                parent_to_world = Pose::IDENTITY;
+            }
+
+            let ndofs = link.joint.ndofs();
+            let mut tmp = SMatrix::<Real, SPATIAL_DIM, SPATIAL_DIM>::zeros();
+            let mut link_joint_j = tmp.columns_mut(0, ndofs);
+            let mut link_j_part = self.body_jacobians[i].columns_mut(link.assembly_id, ndofs);
+            link.joint.jacobian(
+                &(parent_to_world.rotation * link.joint.data.local_frame1.rotation),
+                &mut link_joint_j,
+            );
+            link_j_part += link_joint_j;
+
+            {
+                let link_j = &mut self.body_jacobians[i];
+                let (mut link_j_v, link_j_w) =
+                    link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
+                let shift_tr = vect_to_na(link.shift23).gcross_matrix_tr();
+                link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+            }
         }
     }
 
@@ -2023,7 +2176,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    self.inv_augmented_mass.solve_mut(out_invm_j);
+                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
                 });
         }
 
@@ -2096,7 +2249,7 @@ impl Multibody {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
             self.augmented_mass_indices
                 .with_rearranged_rows_mut(&mut out_invm_j, |out_invm_j| {
-                    self.inv_augmented_mass.solve_mut(out_invm_j);
+                    lu_solve_mut(&self.inv_augmented_mass, out_invm_j);
                 });
         }
 

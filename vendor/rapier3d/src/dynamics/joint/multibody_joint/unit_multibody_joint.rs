@@ -6,6 +6,35 @@ use crate::dynamics::solver::{GenericJointConstraint, WritebackId};
 use crate::dynamics::{IntegrationParameters, JointMotor, Multibody};
 use crate::math::{DVector, Real};
 
+/// PATCH (scasm-testbed): fills the `2 * ndofs` rows at `j_id` with the unit
+/// jacobian `e` of the DoF at `dof_j_id` and with `M^-1 e`. Every unit
+/// constraint on one DoF (its limit, motor and friction) has the same rows: the
+/// first one's solve is copied (`*solved` holds its rows) instead of solving
+/// again, which gives the same bits.
+fn fill_unit_rows(
+    multibody: &Multibody,
+    j_id: usize,
+    dof_j_id: usize,
+    jacobians: &mut DVector,
+    solved: &mut Option<usize>,
+) {
+    let ndofs = multibody.ndofs();
+    if let Some(from) = *solved {
+        jacobians
+            .as_mut_slice()
+            .copy_within(from..from + 2 * ndofs, j_id);
+        return;
+    }
+    jacobians.rows_mut(j_id, ndofs * 2).fill(0.0);
+    jacobians[dof_j_id] = 1.0;
+    jacobians[dof_j_id + ndofs] = 1.0;
+    super::multibody::lu_solve_mut(
+        multibody.inv_augmented_mass(),
+        &mut jacobians.rows_mut(j_id + ndofs, ndofs),
+    );
+    *solved = Some(j_id);
+}
+
 /// Initializes and generate the velocity constraints applicable to the multibody links attached
 /// to this multibody_joint.
 pub fn unit_joint_limit_constraint(
@@ -21,6 +50,40 @@ pub fn unit_joint_limit_constraint(
     insert_at: &mut usize,
     softness: SpringCoefficients<Real>,
 ) {
+    unit_joint_limit_constraint_reusing(
+        params,
+        multibody,
+        link,
+        limits,
+        curr_pos,
+        dof_id,
+        j_id,
+        jacobians,
+        constraints,
+        insert_at,
+        softness,
+        &mut None,
+    );
+}
+
+/// PATCH (scasm-testbed): [`unit_joint_limit_constraint`], copying `M^-1 J` from the rows at
+/// `*solved` when another unit constraint on the same DoF filled them; sets
+/// `*solved` to its own rows otherwise.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn unit_joint_limit_constraint_reusing(
+    params: &IntegrationParameters,
+    multibody: &Multibody,
+    link: &MultibodyLink,
+    limits: [Real; 2],
+    curr_pos: Real,
+    dof_id: usize,
+    j_id: &mut usize,
+    jacobians: &mut DVector,
+    constraints: &mut [GenericJointConstraint],
+    insert_at: &mut usize,
+    softness: SpringCoefficients<Real>,
+    solved: &mut Option<usize>,
+) {
     let ndofs = multibody.ndofs();
     let min_enabled = curr_pos < limits[0];
     let max_enabled = limits[1] < curr_pos;
@@ -33,12 +96,7 @@ pub fn unit_joint_limit_constraint(
     let rhs_wo_bias = 0.0;
 
     let dof_j_id = *j_id + dof_id + link.assembly_id;
-    jacobians.rows_mut(*j_id, ndofs * 2).fill(0.0);
-    jacobians[dof_j_id] = 1.0;
-    jacobians[dof_j_id + ndofs] = 1.0;
-    multibody
-        .inv_augmented_mass()
-        .solve_mut(&mut jacobians.rows_mut(*j_id + ndofs, ndofs));
+    fill_unit_rows(multibody, *j_id, dof_j_id, jacobians, solved);
 
     let lhs = jacobians[dof_j_id + ndofs]; // = J^t * M^-1 J
     let impulse_bounds = [
@@ -92,16 +150,43 @@ pub fn unit_joint_friction_constraint(
     insert_at: &mut usize,
     softness: SpringCoefficients<Real>,
 ) {
+    unit_joint_friction_constraint_reusing(
+        params,
+        multibody,
+        link,
+        friction,
+        dof_id,
+        j_id,
+        jacobians,
+        constraints,
+        insert_at,
+        softness,
+        &mut None,
+    );
+}
+
+/// PATCH (scasm-testbed): [`unit_joint_friction_constraint`], copying `M^-1 J` from the rows at
+/// `*solved` when another unit constraint on the same DoF filled them; sets
+/// `*solved` to its own rows otherwise.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn unit_joint_friction_constraint_reusing(
+    params: &IntegrationParameters,
+    multibody: &Multibody,
+    link: &MultibodyLink,
+    friction: Real,
+    dof_id: usize,
+    j_id: &mut usize,
+    jacobians: &mut DVector,
+    constraints: &mut [GenericJointConstraint],
+    insert_at: &mut usize,
+    softness: SpringCoefficients<Real>,
+    solved: &mut Option<usize>,
+) {
     let ndofs = multibody.ndofs();
     let cfm_coeff = softness.cfm_coeff(params.dt);
 
     let dof_j_id = *j_id + dof_id + link.assembly_id;
-    jacobians.rows_mut(*j_id, ndofs * 2).fill(0.0);
-    jacobians[dof_j_id] = 1.0;
-    jacobians[dof_j_id + ndofs] = 1.0;
-    multibody
-        .inv_augmented_mass()
-        .solve_mut(&mut jacobians.rows_mut(*j_id + ndofs, ndofs));
+    fill_unit_rows(multibody, *j_id, dof_j_id, jacobians, solved);
 
     let lhs = jacobians[dof_j_id + ndofs]; // = J^t * M^-1 J
     let max_impulse = friction * params.dt;
@@ -148,17 +233,46 @@ pub fn unit_joint_motor_constraint(
     constraints: &mut [GenericJointConstraint],
     insert_at: &mut usize,
 ) {
+    unit_joint_motor_constraint_reusing(
+        params,
+        multibody,
+        link,
+        motor,
+        curr_pos,
+        limits,
+        dof_id,
+        j_id,
+        jacobians,
+        constraints,
+        insert_at,
+        &mut None,
+    );
+}
+
+/// PATCH (scasm-testbed): [`unit_joint_motor_constraint`], copying `M^-1 J` from the rows at
+/// `*solved` when another unit constraint on the same DoF filled them; sets
+/// `*solved` to its own rows otherwise.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn unit_joint_motor_constraint_reusing(
+    params: &IntegrationParameters,
+    multibody: &Multibody,
+    link: &MultibodyLink,
+    motor: &JointMotor,
+    curr_pos: Real,
+    limits: Option<[Real; 2]>,
+    dof_id: usize,
+    j_id: &mut usize,
+    jacobians: &mut DVector,
+    constraints: &mut [GenericJointConstraint],
+    insert_at: &mut usize,
+    solved: &mut Option<usize>,
+) {
     let inv_dt = params.inv_dt();
     let ndofs = multibody.ndofs();
     let motor_params = motor.motor_params(params.dt);
 
     let dof_j_id = *j_id + dof_id + link.assembly_id;
-    jacobians.rows_mut(*j_id, ndofs * 2).fill(0.0);
-    jacobians[dof_j_id] = 1.0;
-    jacobians[dof_j_id + ndofs] = 1.0;
-    multibody
-        .inv_augmented_mass()
-        .solve_mut(&mut jacobians.rows_mut(*j_id + ndofs, ndofs));
+    fill_unit_rows(multibody, *j_id, dof_j_id, jacobians, solved);
 
     let lhs = jacobians[dof_j_id + ndofs]; // = J^t * M^-1 J
     let impulse_bounds = [-motor_params.max_impulse, motor_params.max_impulse];
