@@ -34,6 +34,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
+/// Folds `bits` into `hash` (splitmix64's finaliser: every bit of the input
+/// reaches every bit of the output).
 fn mix(hash: &mut u64, bits: u64) {
-    *hash = hash.wrapping_mul(1_000_003).wrapping_add(bits);
+    let mut z = (*hash ^ bits).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    *hash = z ^ (z >> 31);
 }
