@@ -71,3 +71,35 @@ fn malformed_files_say_where() {
         "learner.gamma` must be a number",
     );
 }
+
+#[test]
+fn a_robot_that_cannot_walk_the_gait_is_refused_naming_its_file() {
+    // The shipped robot with front-left knee limits of +-0.2 rad: a
+    // consistent description, but the gait bends that knee by about a radian.
+    let urdf = include_str!("../assets/ers7.urdf");
+    let start = urdf.find(r#"<joint name="fl_knee""#).expect("fl_knee");
+    let end = start + urdf[start..].find("</joint>").expect("end");
+    let joint = urdf[start..end].replacen(
+        r#"lower="-2.4" upper="2.4""#,
+        r#"lower="-0.2" upper="0.2""#,
+        1,
+    );
+    let text = format!("{}{joint}{}", &urdf[..start], &urdf[end..]);
+    let dir = std::env::temp_dir().join(format!("scasm-stiff-knee-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join("stiff_knee.urdf");
+    std::fs::write(&path, text).expect("write");
+    let mut s = Scenario::paper().expect("scenario");
+    let e = s
+        .set(&format!("robot.urdf={}", path.display()))
+        .expect_err("must be refused");
+    let msg = e.to_string();
+    for needle in ["stiff_knee.urdf", "joint `fl_knee`", "[-0.2, 0.2]"] {
+        assert!(msg.contains(needle), "`{msg}` should mention `{needle}`");
+    }
+    assert!(
+        s.urdf_path.is_none(),
+        "a refused robot changed the scenario"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -77,6 +77,40 @@ pub enum RobotError {
     /// The camera frame is not fixed to the head.
     #[error("the `camera` link must be fixed directly to `head`")]
     CameraNotOnHead,
+    /// The gait asks a leg for a foot position it cannot reach.
+    #[error(
+        "leg `{leg}` cannot walk the gait: at command {command_mm_s} mm/s its foot must reach \
+         {target_m:?} m from the hip, beyond a thigh of {thigh_m} m and a shank of {shank_m} m"
+    )]
+    GaitOutOfReach {
+        /// The leg (`fl`, `fr`, `hl`, `hr`).
+        leg: &'static str,
+        /// The walk command, mm/s.
+        command_mm_s: f64,
+        /// The foot target relative to the hip, m.
+        target_m: [f64; 3],
+        /// The leg's upper segment, m.
+        thigh_m: f64,
+        /// The leg's lower segment, m.
+        shank_m: f64,
+    },
+    /// The gait asks a joint for an angle outside its URDF limits.
+    #[error(
+        "joint `{joint}` cannot walk the gait: at command {command_mm_s} mm/s it must reach \
+         {angle_rad:.3} rad, outside its limits [{lower_rad}, {upper_rad}] rad"
+    )]
+    GaitOutOfLimits {
+        /// The joint's name.
+        joint: String,
+        /// The walk command, mm/s.
+        command_mm_s: f64,
+        /// The angle the gait needs, rad.
+        angle_rad: f64,
+        /// The joint's lower limit, rad.
+        lower_rad: f64,
+        /// The joint's upper limit, rad.
+        upper_rad: f64,
+    },
 }
 
 /// A simulation setting out of range.

@@ -326,6 +326,7 @@ impl QuadrupedSim {
             ),
         );
 
+        WalkEngine::check_feasible(&config.walk, &description.legs)?;
         let mut walk = WalkEngine::new(config.walk, &description.legs);
         let initial = walk.update(0.0, 0.0, 0.0);
         let initial_angles: Vec<f64> = initial

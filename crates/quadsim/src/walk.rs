@@ -4,6 +4,7 @@
 //! foot on its locus; inverse kinematics turns feet into angles.
 
 use crate::description::LegDescription;
+use crate::error::RobotError;
 use crate::gait::{FootTarget, GaitClock, GaitTable, foot_target};
 use crate::ik::{self, LegAngles, LegGeometry};
 
@@ -74,6 +75,55 @@ impl WalkEngine {
     /// The command in effect after slewing, mm/s.
     pub fn command_in_effect(&self) -> f64 {
         self.command_mm_s
+    }
+
+    /// Checks that every leg can walk the gait at every command in
+    /// `[v_min, v_max]` (21 commands, 64 phases of each cycle, no steering):
+    /// each foot target within reach and each joint angle within its URDF
+    /// limits; or says which leg or joint cannot, and where.
+    pub fn check_feasible(config: &WalkConfig, legs: &[LegDescription]) -> Result<(), RobotError> {
+        const COMMANDS: u32 = 21;
+        const PHASES: u32 = 64;
+        let g = &config.gait;
+        let engine = Self::new(*config, legs);
+        for (leg, description) in engine.legs.iter().zip(legs) {
+            for c in 0..COMMANDS {
+                let t = f64::from(c) / f64::from(COMMANDS - 1);
+                let command_mm_s = g.v_min_mm_s + t * (g.v_max_mm_s - g.v_min_mm_s);
+                let p = g.params_for(command_mm_s);
+                for k in 0..PHASES {
+                    let phase = f64::from(k) / f64::from(PHASES);
+                    let FootTarget { x, outwards, z } = foot_target(&p, p.step_length_m, phase);
+                    let target_m = [x, leg.side * outwards, z];
+                    let Some(a) = ik::inverse(&leg.geometry, target_m) else {
+                        return Err(RobotError::GaitOutOfReach {
+                            leg: description.name,
+                            command_mm_s,
+                            target_m,
+                            thigh_m: leg.geometry.thigh_m,
+                            shank_m: leg.geometry.shank_m,
+                        });
+                    };
+                    let angles = [a.abduction, a.hip, a.knee];
+                    for ((angle_rad, [lower_rad, upper_rad]), joint) in angles
+                        .into_iter()
+                        .zip(description.limits_rad)
+                        .zip(&description.joints)
+                    {
+                        if !(lower_rad..=upper_rad).contains(&angle_rad) {
+                            return Err(RobotError::GaitOutOfLimits {
+                                joint: joint.clone(),
+                                command_mm_s,
+                                angle_rad,
+                                lower_rad,
+                                upper_rad,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Advances by `dt_s` towards `command_mm_s`, turning by `steer_m` (positive:

@@ -115,3 +115,45 @@ fn a_missing_file_names_the_path() {
     let err = RobotDescription::from_file("/nonexistent/robot.urdf").expect_err("no file");
     assert!(err.to_string().contains("/nonexistent/robot.urdf"));
 }
+
+/// The URDF's text with the joint `joint`'s line after its opening tag edited.
+fn edit_joint(joint: &str, from: &str, to: &str) -> String {
+    let start = ERS7_URDF
+        .find(&format!(r#"<joint name="{joint}""#))
+        .expect("joint");
+    let end = start + ERS7_URDF[start..].find("</joint>").expect("end");
+    let edited = ERS7_URDF[start..end].replacen(from, to, 1);
+    assert_ne!(edited, ERS7_URDF[start..end], "{from} not in {joint}");
+    format!("{}{edited}{}", &ERS7_URDF[..start], &ERS7_URDF[end..])
+}
+
+fn expect_sim_error(text: &str, needles: &[&str]) {
+    let d = load(text).expect("loads: the description alone is consistent");
+    let err = quadsim::QuadrupedSim::new(&d, quadsim::SimConfig::default())
+        .expect_err("the gait cannot be walked");
+    let msg = err.to_string();
+    for needle in needles {
+        assert!(msg.contains(needle), "`{msg}` should mention `{needle}`");
+    }
+}
+
+#[test]
+fn joint_limits_the_gait_cannot_keep_to_are_named() {
+    // The front knees bend backwards by about a radian in every gait.
+    let text = edit_joint(
+        "fl_knee",
+        r#"lower="-2.4" upper="2.4""#,
+        r#"lower="-0.2" upper="0.2""#,
+    );
+    expect_sim_error(
+        &text,
+        &["joint `fl_knee`", "outside its limits [-0.2, 0.2]"],
+    );
+}
+
+#[test]
+fn legs_too_short_for_the_gait_are_named() {
+    // A 2 cm thigh and a 7 cm shank cannot hold the hips 10.5 cm up.
+    let text = edit_joint("fl_knee", r#"xyz="0 0 -0.07""#, r#"xyz="0 0 -0.02""#);
+    expect_sim_error(&text, &["leg `fl`", "thigh of 0.02 m"]);
+}

@@ -253,6 +253,13 @@ impl Scenario {
         match key {
             "robot.urdf" => {
                 let (text, description) = read_urdf(Path::new(value))?;
+                // A robot that cannot walk the gait is refused here, naming
+                // its file, rather than in every trial.
+                quadsim::walk::WalkEngine::check_feasible(&self.sim.walk, &description.legs)
+                    .map_err(|e| SettingError::File {
+                        file: value.into(),
+                        reason: e.to_string(),
+                    })?;
                 self.description = description;
                 self.urdf_text = text;
                 self.urdf_path = Some(PathBuf::from(value));
