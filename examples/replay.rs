@@ -20,7 +20,7 @@ use testbed::experiment;
 use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::scenario::Scenario;
-use testbed::summary::{self, Aggregate};
+use testbed::summary::RunSummary;
 
 /// Replay recorded trials to a learner.
 #[derive(Debug, Parser)]
@@ -106,22 +106,16 @@ fn main() -> Result<()> {
     }
 
     let models = &datasets[0].meta.reference;
-    let best = summary::best_possible(&models.reference(), &scenarios[0].learner);
-    let rows: Vec<_> = results
-        .iter()
-        .map(|(seed, r)| summary::trial_row(*seed, r.as_ref().map_err(|e| e.to_string()), best))
-        .collect();
-    let aggregate = Aggregate::of(&rows);
-    output::write_json(
-        &out.join("summary.json"),
-        &summary::summary_json(
-            &rows,
-            &learner,
-            testbed::learners::parameters(&learner, &scenarios[0]),
-            &models.describe(),
-        ),
-    )?;
-    let (header, table) = report::table::results_table(&aggregate, models);
+    let run = RunSummary::of(
+        results
+            .iter()
+            .map(|(seed, r)| (*seed, r.as_ref().map_err(|e| e.to_string()))),
+        &scenarios[0],
+        models,
+    );
+    output::write_json(&out.join("summary.json"), &run.json)?;
+    let (rows, aggregate) = (&run.rows, &run.aggregate);
+    let (header, table) = report::table::results_table(aggregate, models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!(

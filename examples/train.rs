@@ -23,7 +23,7 @@ use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
 use testbed::scenario::Scenario;
-use testbed::summary::{self, Aggregate};
+use testbed::summary::RunSummary;
 use testbed::trial::{Recording, TrialOutcome};
 
 /// Run calibration trials on the simulated quadruped (the paper's experiment).
@@ -124,30 +124,21 @@ fn main() -> Result<()> {
 
     // Every trial gets a status; only the ok ones enter the means and figures,
     // and the others are counted and named wherever the means are shown.
-    let best = summary::best_possible(&models.reference(), &scenario.learner);
-    let rows: Vec<_> = results
-        .iter()
-        .map(|(seed, r)| {
-            let outcome = r.as_ref().map(|(_, o)| o).map_err(|e| e.to_string());
-            summary::trial_row(*seed, outcome, best)
-        })
-        .collect();
-    let aggregate = Aggregate::of(&rows);
-    output::write_json(
-        &out.join("summary.json"),
-        &summary::summary_json(
-            &rows,
-            &scenario.learner_name,
-            testbed::learners::parameters(&scenario.learner_name, &scenario),
-            &models.describe(),
-        ),
-    )?;
+    let run = RunSummary::of(
+        results
+            .iter()
+            .map(|(seed, r)| (*seed, r.as_ref().map(|(_, o)| o).map_err(|e| e.to_string()))),
+        &scenario,
+        &models,
+    );
+    output::write_json(&out.join("summary.json"), &run.json)?;
+    let (rows, best, aggregate) = (&run.rows, run.best, &run.aggregate);
     ensure!(
         aggregate.ok() > 0,
         "no trial finished ok: {}",
         aggregate.describe()
     );
-    let (header, table) = report::table::results_table(&aggregate, &models);
+    let (header, table) = report::table::results_table(aggregate, &models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("{}", models.describe());
@@ -157,7 +148,7 @@ fn main() -> Result<()> {
     write_demos(&out, &demos)?;
     let outcomes: Vec<TrialOutcome> = results
         .into_iter()
-        .zip(&rows)
+        .zip(rows)
         .filter(|(_, row)| row.1.is_ok())
         .filter_map(|((_, r), _)| r.ok().map(|(_, o)| o))
         .collect();

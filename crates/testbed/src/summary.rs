@@ -6,7 +6,8 @@ use scasm::{Polynomial, ScasmConfig};
 use serde::{Deserialize, Serialize};
 
 use crate::metrics;
-use crate::reference::Reference;
+use crate::reference::{MeasuredModels, Reference};
+use crate::scenario::Scenario;
 use crate::trial::TrialOutcome;
 
 /// Figures of one trial, as `summary.json` has them.
@@ -277,6 +278,49 @@ pub fn summary_json(
         "paper": Figures::paper(),
         "reference": reference,
     })
+}
+
+/// A run's trials summarised (what `train` and `replay` report): each trial's
+/// row, the best polynomials they are judged against, the aggregate, and
+/// `summary.json`'s contents.
+#[derive(Debug, Clone)]
+pub struct RunSummary {
+    /// Seed, status and figures per trial.
+    pub rows: Vec<(u64, TrialStatus, Figures)>,
+    /// The best polynomials' errors through the measured models.
+    pub best: (f64, f64, f64),
+    /// Mean and spread over the ok trials, the others named.
+    pub aggregate: Aggregate,
+    /// `summary.json`.
+    pub json: serde_json::Value,
+}
+
+impl RunSummary {
+    /// Summarises `trials` (seed and outcome, or why it could not run) of
+    /// `scenario`'s learner against the measured `models`.
+    pub fn of<'a>(
+        trials: impl IntoIterator<Item = (u64, Result<&'a TrialOutcome, String>)>,
+        scenario: &Scenario,
+        models: &MeasuredModels,
+    ) -> Self {
+        let best = best_possible(&models.reference(), &scenario.learner);
+        let rows: Vec<_> = trials
+            .into_iter()
+            .map(|(seed, outcome)| trial_row(seed, outcome, best))
+            .collect();
+        let json = summary_json(
+            &rows,
+            &scenario.learner_name,
+            crate::learners::parameters(&scenario.learner_name, scenario),
+            &models.describe(),
+        );
+        Self {
+            aggregate: Aggregate::of(&rows),
+            rows,
+            best,
+            json,
+        }
+    }
 }
 
 #[cfg(test)]
