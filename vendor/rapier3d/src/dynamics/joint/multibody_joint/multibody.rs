@@ -15,7 +15,7 @@ use crate::prelude::MultibodyJoint;
 use crate::utils::mat_to_na;
 use crate::utils::{AngularInertiaOps, CrossProduct, CrossProductMatrix, IndexMut2, vect_to_na};
 use na::{
-    self, DMatrix, DVectorView, DVectorViewMut, Dyn, LU, OMatrix, SMatrix, SVector, StorageMut,
+    self, DMatrix, DVectorView, DVectorViewMut, Dyn, OMatrix, SMatrix, SVector, StorageMut,
 };
 
 #[cfg(doc)]
@@ -47,30 +47,118 @@ fn concat_rb_mass_matrix(mass: Vector, inertia: Real) -> SMatrix<Real, SPATIAL_D
     result
 }
 
-/// PATCH (scasm-testbed): `lu.solve_mut(b)` for one right-hand side: the same
-/// operations in the same order as nalgebra's (row swaps, then the unit lower
-/// and the upper triangular solves column by column), on the factors' raw
-/// column-major storage and a copy of `b` on the stack, without building a view
-/// per column. A column whose coefficient is zero is skipped: it would add
-/// `-0 * l`, which changes no value (at most the sign of a zero). Systems larger
-/// than the stack copy use nalgebra's own solve.
+/// PATCH (scasm-testbed): an LU factorisation with partial (row) pivoting of a
+/// multibody's mass matrix that keeps its storage from one step to the next.
+/// [`MassLu::factor`] is nalgebra's `LU::new`, operation for operation (the
+/// same pivots, the same row swaps, the same eliminations in the same order,
+/// so the same bits), on raw column-major storage instead of a view per column
+/// and without the copy into a fresh matrix that `LU::new` takes by value.
+#[derive(Clone, Debug)]
+pub struct MassLu {
+    /// `L` (below the diagonal, unit diagonal implied) and `U`, as nalgebra's `LU` stores them.
+    lu: DMatrix<Real>,
+    /// The row transpositions, in the order nalgebra's permutation sequence applies them.
+    swaps: Vec<(usize, usize)>,
+}
+
+impl MassLu {
+    fn empty() -> Self {
+        Self {
+            lu: DMatrix::zeros(0, 0),
+            swaps: Vec::new(),
+        }
+    }
+
+    /// The dimension of the factored matrix.
+    pub fn dim(&self) -> usize {
+        self.lu.nrows()
+    }
+
+    /// Factors the top-left `dim x dim` block of `m`.
+    fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+        if self.lu.nrows() != dim {
+            self.lu = DMatrix::zeros(dim, dim);
+        }
+        let rows = m.nrows();
+        let (src, n) = (m.as_slice(), dim);
+        let a = self.lu.as_mut_slice();
+        for j in 0..n {
+            a[j * n..(j + 1) * n].copy_from_slice(&src[j * rows..j * rows + n]);
+        }
+        self.swaps.clear();
+        for i in 0..n {
+            // `icamax` on the column below the diagonal: the first largest |a|.
+            let column = &a[i * n..(i + 1) * n];
+            let (mut piv, mut max) = (i, column[i].abs());
+            for (r, v) in column.iter().enumerate().skip(i + 1) {
+                if v.abs() > max {
+                    (piv, max) = (r, v.abs());
+                }
+            }
+            let diag = column[piv];
+            if diag == 0.0 {
+                continue; // No non-zero entries on this column.
+            }
+            if piv != i {
+                self.swaps.push((i, piv));
+                for c in 0..=i {
+                    a.swap(c * n + i, c * n + piv);
+                }
+            }
+            let inv_diag = 1.0 / diag;
+            for x in &mut a[i * n + i + 1..(i + 1) * n] {
+                *x *= inv_diag;
+            }
+            for k in i + 1..n {
+                if piv != i {
+                    a.swap(k * n + i, k * n + piv);
+                }
+                let (left, right) = a.split_at_mut(k * n);
+                let coeffs = &left[i * n + i + 1..(i + 1) * n];
+                let pivot = -right[i];
+                for (y, x) in right[i + 1..n].iter_mut().zip(coeffs) {
+                    *y = pivot * *x + *y;
+                }
+            }
+        }
+    }
+
+    /// Solves `A x = b` in place, as nalgebra's `LU::solve_mut`; `false` if `A` is singular.
+    pub fn solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
+        &self,
+        b: &mut na::Matrix<Real, Dyn, C, S>,
+    ) -> bool {
+        lu_solve_mut(self, b)
+    }
+}
+
+/// PATCH (scasm-testbed): `lu.solve_mut(b)`: the same operations in the same
+/// order as nalgebra's `LU::solve_mut` (row swaps, then the unit lower and the
+/// upper triangular solves column by column). For one right-hand side it works
+/// on the factors' raw column-major storage and a copy of `b` on the stack,
+/// without building a view per column, and skips a column whose coefficient is
+/// zero: it would add `-0 * l`, which changes no value (at most the sign of a
+/// zero). Systems larger than the stack copy use nalgebra's triangular solves.
 pub(crate) fn lu_solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
-    lu: &LU<Real, Dyn, Dyn>,
+    lu: &MassLu,
     b: &mut na::Matrix<Real, Dyn, C, S>,
 ) -> bool {
     const MAX_DIM: usize = 64;
-    let n = lu.lu_internal().nrows();
-    if n > MAX_DIM || b.ncols() != 1 {
-        return lu.solve_mut(b);
-    }
+    let n = lu.dim();
     assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
-    lu.p().permute_rows(b);
+    for &(i, i2) in &lu.swaps {
+        b.swap_rows(i, i2);
+    }
+    if n > MAX_DIM || b.ncols() != 1 {
+        let _ = lu.lu.solve_lower_triangular_with_diag_mut(b, 1.0);
+        return lu.lu.solve_upper_triangular_mut(b);
+    }
     let mut x = [0.0 as Real; MAX_DIM];
     for (i, xi) in x[..n].iter_mut().enumerate() {
         *xi = b[i];
     }
     let x = &mut x[..n];
-    let f = lu.lu_internal().as_slice();
+    let f = lu.lu.as_slice();
     // L y = P b, L with a unit diagonal.
     for i in 0..n.saturating_sub(1) {
         let coeff = x[i];
@@ -215,13 +303,13 @@ pub struct Multibody {
     //       move dofs from/to a format that matches the augmented mass.
     // TODO: use sparse matrices?
     augmented_mass: DMatrix<Real>,
-    inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    inv_augmented_mass: MassLu,
     // The indexing sequence for moving all kinematics degrees of
     // freedoms to the end of the generalized coordinates vector.
     augmented_mass_indices: IndexSequence,
 
     acc_augmented_mass: DMatrix<Real>,
-    acc_inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    acc_inv_augmented_mass: MassLu,
 
     ndofs: usize,
     pub(crate) root_is_dynamic: bool,
@@ -277,9 +365,9 @@ impl Multibody {
             accelerations: DVector::zeros(0),
             body_jacobians: Vec::new(),
             augmented_mass: DMatrix::zeros(0, 0),
-            inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            inv_augmented_mass: MassLu::empty(),
             acc_augmented_mass: DMatrix::zeros(0, 0),
-            acc_inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            acc_inv_augmented_mass: MassLu::empty(),
             augmented_mass_indices: IndexSequence::new(),
             ndofs: 0,
             solver_id: 0,
@@ -486,7 +574,7 @@ impl Multibody {
     }
 
     /// The inverse augmented mass matrix of this multibody.
-    pub fn inv_augmented_mass(&self) -> &LU<Real, Dyn, Dyn> {
+    pub fn inv_augmented_mass(&self) -> &MassLu {
         &self.inv_augmented_mass
     }
 
@@ -1259,17 +1347,11 @@ impl Multibody {
         self.augmented_mass_indices
             .rearrange_rows(&mut self.augmented_mass, true);
 
-        // TODO: avoid allocation inside LU at each timestep.
-        self.acc_inv_augmented_mass = LU::new(
-            self.acc_augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
-        self.inv_augmented_mass = LU::new(
-            self.augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
+        // PATCH (scasm-testbed): factored in place, no allocation.
+        self.acc_inv_augmented_mass
+            .factor(&self.acc_augmented_mass, effective_dim);
+        self.inv_augmented_mass
+            .factor(&self.augmented_mass, effective_dim);
     }
 
     /// PATCH (scasm-testbed): the mass matrices without and with the
@@ -1604,17 +1686,11 @@ impl Multibody {
         self.augmented_mass_indices
             .rearrange_rows(&mut self.augmented_mass, true);
 
-        // TODO: avoid allocation inside LU at each timestep.
-        self.acc_inv_augmented_mass = LU::new(
-            self.acc_augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
-        self.inv_augmented_mass = LU::new(
-            self.augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
+        // PATCH (scasm-testbed): factored in place, no allocation.
+        self.acc_inv_augmented_mass
+            .factor(&self.acc_augmented_mass, effective_dim);
+        self.inv_augmented_mass
+            .factor(&self.augmented_mass, effective_dim);
     }
 
     /// Per-DoF inverse joint-space inertia `diag(M⁻¹)` at the current configuration, where `M`
