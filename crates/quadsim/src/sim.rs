@@ -361,6 +361,7 @@ impl QuadrupedSim {
             fresh_frame: false,
         };
         sim.pose_joints(&initial_angles);
+        sim.motorise_joints();
         sim.apply_servos();
         Ok(sim)
     }
@@ -391,27 +392,34 @@ impl QuadrupedSim {
         }
     }
 
-    /// Writes the servo setpoints into the physics' joint motors.
+    /// Makes each leg joint's angular axis a force-based motor (once, at build).
+    fn motorise_joints(&mut self) {
+        for h in self.joints.iter().flatten() {
+            if let Some((mb, id)) = self.world.multibody_joints.get_mut(*h) {
+                if let Some(link) = mb.link_mut(id) {
+                    let data = &mut link.joint.data;
+                    data.set_motor_model(JointAxis::AngX, MotorModel::ForceBased);
+                    data.set_motor(JointAxis::AngX, 0.0, 0.0, 0.0, 0.0);
+                }
+            }
+        }
+    }
+
+    /// Writes the servo setpoints into the physics' joint motors. (Through
+    /// `link_motor_mut`, which leaves the multibody's kinematics valid, so the
+    /// physics need not redo them at the start of the step.)
     fn apply_servos(&mut self) {
         let s = self.config.servo;
         for (leg, handles) in self.joints.iter().enumerate() {
             for (k, h) in handles.iter().enumerate() {
                 let i = 3 * leg + k;
                 if let Some((mb, id)) = self.world.multibody_joints.get_mut(*h) {
-                    if let Some(link) = mb.link_mut(id) {
-                        let data = &mut link.joint.data;
-                        data.set_motor_model(JointAxis::AngX, MotorModel::ForceBased);
-                        data.set_motor(
-                            JointAxis::AngX,
-                            self.servos.positions()[i] as Real,
-                            self.servos.velocities()[i] as Real,
-                            s.kp_nm_per_rad as Real,
-                            s.kd_nm_s_per_rad as Real,
-                        );
-                        data.set_motor_max_force(
-                            JointAxis::AngX,
-                            self.torque_limits[leg][k] as Real,
-                        );
+                    if let Some(motor) = mb.link_motor_mut(id, JointAxis::AngX) {
+                        motor.target_pos = self.servos.positions()[i] as Real;
+                        motor.target_vel = self.servos.velocities()[i] as Real;
+                        motor.stiffness = s.kp_nm_per_rad as Real;
+                        motor.damping = s.kd_nm_s_per_rad as Real;
+                        motor.max_force = self.torque_limits[leg][k] as Real;
                     }
                 }
             }

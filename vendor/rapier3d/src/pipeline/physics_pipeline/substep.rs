@@ -436,7 +436,8 @@ impl PhysicsPipeline {
         // TODO: do this only on user-change.
         // TODO: do we want some kind of automatic inverse kinematics?
         for multibody in &mut multibody_joints.multibodies {
-            multibody.1.forward_kinematics(bodies, true);
+            // PATCH (scasm-testbed): skipped when nothing moved since the last step.
+            multibody.1.forward_kinematics_at_step_start(bodies);
             multibody
                 .1
                 .update_rigid_bodies_internal(bodies, true, false, false);

@@ -4,7 +4,8 @@ use crate::alloc_prelude::*;
 use crate::dynamics::integration_parameters::SpringCoefficients;
 use crate::dynamics::solver::{GenericJointConstraint, WritebackId};
 use crate::dynamics::{
-    IntegrationParameters, RigidBodyHandle, RigidBodySet, RigidBodyType, RigidBodyVelocity,
+    IntegrationParameters, JointAxis, JointMotor, RigidBodyHandle, RigidBodySet, RigidBodyType,
+    RigidBodyVelocity,
 };
 use crate::math::{
     ANG_DIM, AngDim, AngVector, DIM, DVector, Dim, Jacobian, Pose, Real, SPATIAL_DIM,
@@ -298,6 +299,10 @@ pub struct Multibody {
     pub(crate) accelerations: DVector,
 
     body_jacobians: Vec<Jacobian<Real>>,
+    /// PATCH (scasm-testbed): the link poses and body jacobians are those of the
+    /// current generalized coordinates (set by forward kinematics, cleared by
+    /// anything that could change a coordinate or a joint).
+    fk_fresh: bool,
     // NOTE: the mass matrices are dimensioned based on the non-kinematic degrees of
     //       freedoms only. The `Self::augmented_mass_permutation` sequence can be used to
     //       move dofs from/to a format that matches the augmented mass.
@@ -364,6 +369,7 @@ impl Multibody {
             frictions: DVector::zeros(0),
             accelerations: DVector::zeros(0),
             body_jacobians: Vec::new(),
+            fk_fresh: false,
             augmented_mass: DMatrix::zeros(0, 0),
             inv_augmented_mass: MassLu::empty(),
             acc_augmented_mass: DMatrix::zeros(0, 0),
@@ -486,6 +492,7 @@ impl Multibody {
     }
 
     pub(crate) fn append(&mut self, mut rhs: Multibody, parent: usize, joint: MultibodyJoint) {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         let joint_ndofs = joint.ndofs();
         let rhs_root_ndofs = rhs.links[0].joint.ndofs();
         let ndofs_before_append = self.velocities.len();
@@ -587,6 +594,7 @@ impl Multibody {
     /// Mutable reference to the first link of this multibody.
     #[inline]
     pub fn root_mut(&mut self) -> &mut MultibodyLink {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         &mut self.links[0]
     }
 
@@ -603,7 +611,19 @@ impl Multibody {
     /// Return `None` if the given id does not identifies a multibody link part of `self`.
     #[inline]
     pub fn link_mut(&mut self, id: usize) -> Option<&mut MultibodyLink> {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         self.links.get_mut(id)
+    }
+
+    /// PATCH (scasm-testbed): the motor of link `id`'s joint along `axis`, to
+    /// change its targets, gains or force limit every step without
+    /// invalidating the forward kinematics as [`Self::link_mut`] must. The axis
+    /// must already be motorised (see [`GenericJoint::set_motor`]).
+    #[inline]
+    pub fn link_motor_mut(&mut self, id: usize, axis: JointAxis) -> Option<&mut JointMotor> {
+        self.links
+            .get_mut(id)
+            .map(|link| &mut link.joint.data.motors[axis as usize])
     }
 
     /// The number of links on this multibody.
@@ -622,6 +642,7 @@ impl Multibody {
     ///
     /// All link are guaranteed to be yielded before its descendant.
     pub fn links_mut(&mut self) -> impl Iterator<Item = &mut MultibodyLink> {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         self.links.iter_mut()
     }
 
@@ -1880,6 +1901,7 @@ impl Multibody {
 
     #[inline]
     pub(crate) fn integrate(&mut self, dt: Real) {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         for rb in self.links.iter_mut() {
             rb.joint
                 .integrate(dt, &self.velocities.as_slice()[rb.assembly_id..])
@@ -1891,6 +1913,7 @@ impl Multibody {
     /// Note this does **not** updates the link poses, only their generalized coordinates.
     /// To update the link poses and associated rigid-bodies, call [`Self::forward_kinematics`].
     pub fn apply_displacements(&mut self, disp: &[Real]) {
+        self.fk_fresh = false; // PATCH (scasm-testbed)
         for link in self.links.iter_mut() {
             link.joint.apply_displacement(&disp[link.assembly_id..])
         }
@@ -2074,6 +2097,29 @@ impl Multibody {
          * Compute body jacobians.
          */
         self.update_body_jacobians();
+        self.fk_fresh = true; // PATCH (scasm-testbed)
+    }
+
+    /// PATCH (scasm-testbed): the forward kinematics at the start of a step
+    /// (`forward_kinematics(bodies, true)`), skipped when they would give the
+    /// same poses and jacobians as the last run: the step before ended with
+    /// forward kinematics on the integrated coordinates, and since then no link
+    /// was borrowed mutably or displaced, no link's rigid body was modified by
+    /// the user, and the root's rigid body is where the multibody left it.
+    pub(crate) fn forward_kinematics_at_step_start(&mut self, bodies: &RigidBodySet) {
+        let untouched = self.fk_fresh
+            && self.links.iter().all(|link| {
+                bodies
+                    .get(link.rigid_body)
+                    .is_some_and(|rb| rb.changes.is_empty())
+            })
+            && bodies.get(self.links[0].rigid_body).is_some_and(|rb| {
+                rb.is_dynamic() == self.root_is_dynamic
+                    && *rb.position() == self.links[0].local_to_world
+            });
+        if !untouched {
+            self.forward_kinematics(bodies, true);
+        }
     }
 
     /// Computes the ids of all the links between the root and the link identified by `link_id`.
