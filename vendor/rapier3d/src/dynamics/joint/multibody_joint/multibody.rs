@@ -193,39 +193,73 @@ pub(crate) fn lu_solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
     solved
 }
 
-/// PATCH (scasm-testbed): `out[c, c] += J[:, c]^T m J[:, c]` over the columns
-/// `c` of `cols` (where `J` can be non-zero): `J^T m J` for a jacobian that is
-/// zero elsewhere, at `(|c| / n)^2` of the dense quadratic form's cost. The
-/// products and dot products are nalgebra's, operation for operation (so the
-/// same bits), on the matrices' raw column-major storage.
-fn sparse_quadform(
-    out: &mut DMatrix<Real>,
-    m: &SMatrix<Real, SPATIAL_DIM, SPATIAL_DIM>,
+/// PATCH (scasm-testbed): `out1[c, c] += J[:, c]^T M1 J[:, c]` and the same
+/// with `M2` into `out2`, over the columns `c` of `cols` (where `J` can be
+/// non-zero), for two rigid-body mass matrices `Mk = diag(mass, inertia_k)`
+/// that share their mass: `J^T M J` for a jacobian that is zero elsewhere, at
+/// `(|c| / n)^2` of the dense quadratic form's cost. The values are those of
+/// nalgebra's dense products (`M x` column by column, then running dot
+/// products): the terms skipped are the zero blocks' `0 * x`, which change no
+/// value (at most the sign of a zero), and the linear rows' products and the
+/// dot products' first three terms, shared by the two forms, are computed once.
+/// Then `out2[a, b] += J[:, a] . extra[:, b]` (a separate addition, as before).
+#[allow(clippy::too_many_arguments)]
+fn sparse_quadform_pair(
+    out1: &mut DMatrix<Real>,
+    out2: &mut DMatrix<Real>,
+    mass: [Real; DIM],
+    inertia1: &na::Matrix3<Real>,
+    inertia2: &na::Matrix3<Real>,
     j: &Jacobian<Real>,
+    extra: &[Real],
     cols: &[usize],
-    mj: &mut Vec<[Real; SPATIAL_DIM]>,
+    mj: &mut Vec<[Real; 3 * DIM]>,
 ) {
-    let (m, j) = (m.as_slice(), j.as_slice());
-    mj.clear();
-    mj.extend(cols.iter().map(|&c| {
-        let x = &j[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
-        // `m * x` as nalgebra's gemv: column by column.
-        let mut y = [0.0; SPATIAL_DIM];
-        for (yr, mr) in y.iter_mut().zip(&m[..SPATIAL_DIM]) {
-            *yr = *mr * x[0];
+    let (i1, i2, j) = (inertia1.as_slice(), inertia2.as_slice(), j.as_slice());
+    // `inertia * w` as nalgebra's gemv: column by column.
+    let angular = |m: &[Real], w: &[Real]| {
+        let mut y = [0.0; DIM];
+        for (yr, mr) in y.iter_mut().zip(&m[..DIM]) {
+            *yr = *mr * w[0];
         }
-        for k in 1..SPATIAL_DIM {
-            let column = &m[SPATIAL_DIM * k..SPATIAL_DIM * (k + 1)];
-            for (yr, mr) in y.iter_mut().zip(column) {
-                *yr = *mr * x[k] + *yr;
+        for k in 1..DIM {
+            for (yr, mr) in y.iter_mut().zip(&m[DIM * k..DIM * (k + 1)]) {
+                *yr = *mr * w[k] + *yr;
             }
         }
         y
+    };
+    mj.clear();
+    mj.extend(cols.iter().map(|&c| {
+        let x = &j[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
+        let (w1, w2) = (angular(i1, &x[DIM..]), angular(i2, &x[DIM..]));
+        [
+            mass[0] * x[0],
+            mass[1] * x[1],
+            mass[2] * x[2],
+            w1[0],
+            w1[1],
+            w1[2],
+            w2[0],
+            w2[1],
+            w2[2],
+        ]
     }));
     for &a in cols {
         let ja = &j[SPATIAL_DIM * a..SPATIAL_DIM * (a + 1)];
-        for (mj_b, &b) in mj.iter().zip(cols) {
-            out[(a, b)] += spatial_dot(ja, mj_b);
+        for (y, &b) in mj.iter().zip(cols) {
+            let mut linear = 0.0;
+            for r in 0..DIM {
+                linear += ja[r] * y[r];
+            }
+            let (mut s1, mut s2) = (linear, linear);
+            for r in 0..DIM {
+                s1 += ja[DIM + r] * y[DIM + r];
+                s2 += ja[DIM + r] * y[2 * DIM + r];
+            }
+            out1[(a, b)] += s1;
+            out2[(a, b)] += s2;
+            out2[(a, b)] += spatial_dot(ja, &extra[SPATIAL_DIM * b..]);
         }
     }
 }
@@ -346,7 +380,7 @@ pub struct Multibody {
     /// PATCH (scasm-testbed): workspace of `M J` columns for the sparse
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
-    mj_workspace: Vec<[Real; SPATIAL_DIM]>,
+    mj_workspace: Vec<[Real; 3 * DIM]>,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -1158,29 +1192,6 @@ impl Multibody {
                 augmented_inertia += gyroscopic_matrix * dt;
             }
 
-            // TODO: optimize that (knowing the structure of the augmented inertia matrix).
-            // TODO: this could be better optimized in 2D.
-            #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
-            let rb_mass_matrix_wo_gyro = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
-            #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
-            let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, augmented_inertia.into());
-            // PATCH (scasm-testbed): the quadratic forms on the link's columns.
-            let dofs = &self.link_dofs[i];
-            sparse_quadform(
-                &mut self.augmented_mass,
-                &rb_mass_matrix_wo_gyro,
-                body_jacobian,
-                dofs,
-                &mut self.mj_workspace,
-            );
-            sparse_quadform(
-                &mut self.acc_augmented_mass,
-                &rb_mass_matrix,
-                body_jacobian,
-                dofs,
-                &mut self.mj_workspace,
-            );
-
             /*
              *
              * Coriolis matrix.
@@ -1308,14 +1319,20 @@ impl Multibody {
                 // NOTE: this is just an axpy, but on row columns.
                 i_coriolis_dt_w.zip_apply(coriolis_w, |o, x| *o = x * dt * rb_inertia);
             }
-            // PATCH (scasm-testbed): `J^T (I C dt)` on the link's columns.
-            let (j, icdt) = (rb_j.as_slice(), self.i_coriolis_dt.as_slice());
-            for &a in &self.link_dofs[i] {
-                let ja = &j[SPATIAL_DIM * a..];
-                for &b in &self.link_dofs[i] {
-                    self.acc_augmented_mass[(a, b)] += spatial_dot(ja, &icdt[SPATIAL_DIM * b..]);
-                }
-            }
+            // PATCH (scasm-testbed): the quadratic forms `J^T M J` on the link's
+            // columns, knowing the structure of the rigid-body mass matrices,
+            // and `J^T (I C dt)` added to the second in the same pass.
+            sparse_quadform_pair(
+                &mut self.augmented_mass,
+                &mut self.acc_augmented_mass,
+                [rb_mass.x, rb_mass.y, rb_mass.z],
+                &mat_to_na(rb_inertia),
+                &mat_to_na(augmented_inertia),
+                body_jacobian,
+                self.i_coriolis_dt.as_slice(),
+                &self.link_dofs[i],
+                &mut self.mj_workspace,
+            );
         }
 
         /*
