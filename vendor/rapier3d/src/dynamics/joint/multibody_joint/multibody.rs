@@ -54,6 +54,7 @@ fn concat_rb_mass_matrix(mass: Vector, inertia: Real) -> SMatrix<Real, SPATIAL_D
 /// same pivots, the same row swaps, the same eliminations in the same order,
 /// so the same bits), on raw column-major storage instead of a view per column
 /// and without the copy into a fresh matrix that `LU::new` takes by value.
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
 #[derive(Clone, Debug)]
 pub struct MassLu {
     /// `L` (below the diagonal, unit diagonal implied) and `U`, as nalgebra's `LU` stores them.
