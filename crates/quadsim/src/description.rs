@@ -1,5 +1,8 @@
-//! Reading and checking the robot's URDF: the parts the simulator relies on are
-//! all there and consistent, or the error says which is not.
+//! Reading and checking a robot's URDF: the parts the simulator relies on are
+//! all there and consistent, or the error says which is not. A [`RobotMap`]
+//! says which joints form each leg and where the camera sits (a robot file's
+//! job, see [`crate::robot_file`]); a URDF alone follows the shipped robot's
+//! naming convention.
 
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
@@ -12,6 +15,62 @@ use crate::ik::LegGeometry;
 /// The four legs, in the order the simulator uses everywhere.
 pub const LEG_NAMES: [&str; 4] = ["fl", "fr", "hl", "hr"];
 
+/// What the URDF cannot say: which joints form each leg and where the camera is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotMap {
+    /// Each leg's joints (abduction, hip, knee), in [`LEG_NAMES`] order.
+    pub legs: [[String; 3]; 4],
+    /// The camera's mount.
+    pub camera: CameraMount,
+}
+
+/// Where the camera sits: a link, and the camera frame in that link's frame
+/// (optical axis +x, image up +z).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CameraMount {
+    /// The link the camera is fixed to.
+    pub parent: String,
+    /// Translation in the parent's frame, m.
+    pub xyz: [f64; 3],
+    /// Roll, pitch, yaw in the parent's frame, rad.
+    pub rpy: [f64; 3],
+}
+
+impl RobotMap {
+    /// The shipped robot's convention: joints `{fl,fr,hl,hr}_{abduction,hip,knee}`
+    /// and a `camera` link fixed directly to `head`.
+    pub fn conventional(urdf: &Robot) -> Result<Self, RobotError> {
+        let legs = LEG_NAMES.map(|name| {
+            [
+                format!("{name}_abduction"),
+                format!("{name}_hip"),
+                format!("{name}_knee"),
+            ]
+        });
+        if !urdf.links.iter().any(|l| l.name == "camera") {
+            return Err(RobotError::MissingLink {
+                link: "camera".into(),
+            });
+        }
+        let j = urdf
+            .joints
+            .iter()
+            .find(|j| j.child.link == "camera")
+            .ok_or(RobotError::CameraNotOnHead)?;
+        if j.parent.link != "head" || !matches!(j.joint_type, JointType::Fixed) {
+            return Err(RobotError::CameraNotOnHead);
+        }
+        Ok(Self {
+            legs,
+            camera: CameraMount {
+                parent: "head".into(),
+                xyz: j.origin.xyz.0,
+                rpy: j.origin.rpy.0,
+            },
+        })
+    }
+}
+
 /// One leg as the URDF describes it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LegDescription {
@@ -19,6 +78,9 @@ pub struct LegDescription {
     pub name: &'static str,
     /// The abduction joint's position in the torso frame, m.
     pub hip_in_torso_m: [f64; 3],
+    /// The hip joint's sideways offset from the abduction joint, m (positive:
+    /// left; 0 when the hip sits on the abduction axis).
+    pub hip_offset_m: f64,
     /// Segment lengths (the knee direction is the gait's choice).
     pub thigh_m: f64,
     /// Knee to foot centre, m.
@@ -41,6 +103,7 @@ impl LegDescription {
         LegGeometry {
             thigh_m: self.thigh_m,
             shank_m: self.shank_m,
+            hip_offset_m: self.hip_offset_m,
             knee_sign,
         }
     }
@@ -65,11 +128,12 @@ impl LegDescription {
 pub struct RobotDescription {
     /// The parsed URDF.
     pub urdf: Robot,
+    /// The root link (the torso).
+    pub root_link: String,
     /// The legs, in [`LEG_NAMES`] order.
     pub legs: Vec<LegDescription>,
-    /// The camera frame in the head link's frame: translation (m) and roll, pitch,
-    /// yaw (rad).
-    pub camera_in_head: ([f64; 3], [f64; 3]),
+    /// The camera's mount.
+    pub camera: CameraMount,
     /// Sum of all link masses, kg.
     pub total_mass_kg: f64,
 }
@@ -85,12 +149,22 @@ impl RobotDescription {
         Self::from_urdf_str(&text)
     }
 
-    /// Parses and checks URDF text.
+    /// Parses and checks URDF text that follows the shipped robot's naming
+    /// convention (see [`RobotMap::conventional`]).
     pub fn from_urdf_str(text: &str) -> Result<Self, RobotError> {
-        let urdf = urdf_rs::read_from_string(text).map_err(|e| RobotError::Parse {
-            reason: e.to_string(),
-        })?;
-        check_tree(&urdf)?;
+        let urdf = parse(text)?;
+        let map = RobotMap::conventional(&urdf)?;
+        Self::from_urdf(urdf, &map)
+    }
+
+    /// Parses and checks URDF text with the legs and camera `map` names.
+    pub fn from_urdf_str_with(text: &str, map: &RobotMap) -> Result<Self, RobotError> {
+        Self::from_urdf(parse(text)?, map)
+    }
+
+    /// Checks a parsed URDF with the legs and camera `map` names.
+    pub fn from_urdf(urdf: Robot, map: &RobotMap) -> Result<Self, RobotError> {
+        let root_link = check_tree(&urdf)?;
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;
@@ -116,18 +190,47 @@ impl RobotDescription {
             }
             total_mass_kg += m;
         }
+        if !(total_mass_kg > 0.0) {
+            return Err(RobotError::BadInertia {
+                link: root_link,
+                reason: "the robot has no mass".into(),
+            });
+        }
         let legs = LEG_NAMES
             .iter()
-            .map(|&name| check_leg(&urdf, name))
+            .zip(&map.legs)
+            .map(|(&name, joints)| check_leg(&urdf, &root_link, name, joints))
             .collect::<Result<Vec<_>, _>>()?;
-        let camera_in_head = check_camera(&urdf)?;
+        let camera = map.camera.clone();
+        if !urdf.links.iter().any(|l| l.name == camera.parent) {
+            return Err(RobotError::MissingLink {
+                link: camera.parent,
+            });
+        }
+        if camera.xyz.iter().chain(&camera.rpy).any(|v| !v.is_finite()) {
+            return Err(RobotError::BadCamera {
+                reason: format!("mount {:?} {:?} is not finite", camera.xyz, camera.rpy),
+            });
+        }
         Ok(Self {
             urdf,
+            root_link,
             legs,
-            camera_in_head,
+            camera,
             total_mass_kg,
         })
     }
+
+    /// The length of a leg (thigh and shank), m: the robot's size for scaling.
+    pub fn leg_length_m(&self) -> f64 {
+        self.legs[0].thigh_m + self.legs[0].shank_m
+    }
+}
+
+fn parse(text: &str) -> Result<Robot, RobotError> {
+    urdf_rs::read_from_string(text).map_err(|e| RobotError::Parse {
+        reason: e.to_string(),
+    })
 }
 
 fn link_names(urdf: &Robot) -> Result<HashSet<&str>, RobotError> {
@@ -142,17 +245,11 @@ fn link_names(urdf: &Robot) -> Result<HashSet<&str>, RobotError> {
     Ok(names)
 }
 
-/// Every joint names existing links, every link but the torso has exactly one
-/// parent, and every link is reachable from the torso.
-fn check_tree(urdf: &Robot) -> Result<(), RobotError> {
+/// Every joint names existing links, every link but the root has exactly one
+/// parent, and every link is reachable from the root (the first link without a
+/// parent): returns the root.
+fn check_tree(urdf: &Robot) -> Result<String, RobotError> {
     let names = link_names(urdf)?;
-    for required in ["torso", "head", "camera"] {
-        if !names.contains(required) {
-            return Err(RobotError::MissingLink {
-                link: required.into(),
-            });
-        }
-    }
     let mut parent_of: HashMap<&str, &str> = HashMap::new();
     for j in &urdf.joints {
         for link in [&j.parent.link, &j.child.link] {
@@ -170,21 +267,27 @@ fn check_tree(urdf: &Robot) -> Result<(), RobotError> {
             });
         }
     }
-    if parent_of.contains_key("torso") {
-        return Err(RobotError::NotATree {
-            link: "torso".into(),
-            reason: "the root must not have a parent",
-        });
-    }
+    let root = urdf
+        .links
+        .iter()
+        .map(|l| l.name.as_str())
+        .find(|l| !parent_of.contains_key(l))
+        .ok_or_else(|| RobotError::NotATree {
+            link: urdf
+                .links
+                .first()
+                .map_or_else(String::new, |l| l.name.clone()),
+            reason: "no link is without a parent, so there is no root",
+        })?;
     for &link in &names {
         let (mut at, mut steps) = (link, 0);
-        while at != "torso" {
+        while at != root {
             at = parent_of
                 .get(at)
                 .copied()
                 .ok_or_else(|| RobotError::NotATree {
                     link: link.into(),
-                    reason: "it is not connected to the torso",
+                    reason: "it is not connected to the root (the first link without a parent)",
                 })?;
             steps += 1;
             if steps > names.len() {
@@ -195,7 +298,7 @@ fn check_tree(urdf: &Robot) -> Result<(), RobotError> {
             }
         }
     }
-    Ok(())
+    Ok(root.to_string())
 }
 
 fn joint<'a>(urdf: &'a Robot, name: &str) -> Result<&'a urdf_rs::Joint, RobotError> {
@@ -212,12 +315,12 @@ fn bad_joint(joint: &str, reason: String) -> RobotError {
     }
 }
 
-fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotError> {
-    let names = [
-        format!("{name}_abduction"),
-        format!("{name}_hip"),
-        format!("{name}_knee"),
-    ];
+fn check_leg(
+    urdf: &Robot,
+    root: &str,
+    name: &'static str,
+    names: &[String; 3],
+) -> Result<LegDescription, RobotError> {
     let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
     let mut joints = Vec::with_capacity(3);
     let mut limits_rad = [[0.0; 2]; 3];
@@ -262,9 +365,12 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
         velocity_rad_s[k] = j.limit.velocity;
         joints.push(j);
     }
-    // The chain: torso -> abduction -> hip -> knee.
-    if joints[0].parent.link != "torso" {
-        return Err(bad_joint(&names[0], "its parent must be `torso`".into()));
+    // The chain: root -> abduction -> hip -> knee.
+    if joints[0].parent.link != root {
+        return Err(bad_joint(
+            &names[0],
+            format!("its parent must be the root link `{root}`"),
+        ));
     }
     for k in 1..3 {
         if joints[k].parent.link != joints[k - 1].child.link {
@@ -275,11 +381,20 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
         }
     }
     let [hip_origin, knee_origin] = [&joints[1].origin, &joints[2].origin];
-    if hip_origin.xyz.0.iter().any(|v| v.abs() > 1e-9) {
+    let hip = hip_origin.xyz.0;
+    if hip[0].abs() > 1e-9 || hip[2].abs() > 1e-9 || !hip[1].is_finite() {
         return Err(bad_joint(
             &names[1],
-            "must sit at the abduction joint".into(),
+            "must sit at the abduction joint or beside it (an offset along y only)".into(),
         ));
+    }
+    for (k, j) in joints.iter().enumerate() {
+        if j.origin.rpy.0.iter().any(|v| v.abs() > 1e-9) {
+            return Err(bad_joint(
+                &names[k],
+                format!("its origin must not rotate (rpy {:?})", j.origin.rpy.0),
+            ));
+        }
     }
     let knee = knee_origin.xyz.0;
     if knee[0].abs() > 1e-9 || knee[1].abs() > 1e-9 || knee[2] >= 0.0 {
@@ -314,25 +429,13 @@ fn check_leg(urdf: &Robot, name: &'static str) -> Result<LegDescription, RobotEr
     Ok(LegDescription {
         name,
         hip_in_torso_m: joints[0].origin.xyz.0,
+        hip_offset_m: hip[1],
         thigh_m: -knee[2],
         shank_m: -foot.0[2],
         foot_radius_m: foot.1,
-        joints: names,
+        joints: names.clone(),
         limits_rad,
         effort_nm,
         velocity_rad_s,
     })
-}
-
-/// The camera's pose in the head frame, following fixed joints from the head.
-fn check_camera(urdf: &Robot) -> Result<([f64; 3], [f64; 3]), RobotError> {
-    let j = urdf
-        .joints
-        .iter()
-        .find(|j| j.child.link == "camera")
-        .ok_or(RobotError::CameraNotOnHead)?;
-    if j.parent.link != "head" || !matches!(j.joint_type, JointType::Fixed) {
-        return Err(RobotError::CameraNotOnHead);
-    }
-    Ok((j.origin.xyz.0, j.origin.rpy.0))
 }

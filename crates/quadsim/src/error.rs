@@ -45,7 +45,7 @@ pub enum RobotError {
         link: String,
     },
     /// A link has two parents, or the links do not form one tree rooted at the torso.
-    #[error("link `{link}` is not in one tree rooted at `torso`: {reason}")]
+    #[error("link `{link}` is not in one tree: {reason}")]
     NotATree {
         /// The link's name.
         link: String,
@@ -77,6 +77,12 @@ pub enum RobotError {
     /// The camera frame is not fixed to the head.
     #[error("the `camera` link must be fixed directly to `head`")]
     CameraNotOnHead,
+    /// The camera's mount cannot be used.
+    #[error("camera: {reason}")]
+    BadCamera {
+        /// What is wrong.
+        reason: String,
+    },
     /// The gait asks a leg for a foot position it cannot reach.
     #[error(
         "leg `{leg}` cannot walk the gait: at command {command_mm_s} mm/s its foot must reach \

@@ -1,5 +1,6 @@
 //! Analytic inverse kinematics of a three-joint leg (abduction about x, hip and
-//! knee about y, two segments), and its forward kinematics for checking.
+//! knee about y, two segments, the hip possibly offset sideways from the
+//! abduction axis), and its forward kinematics for checking.
 
 /// A leg's geometry.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -8,6 +9,9 @@ pub struct LegGeometry {
     pub thigh_m: f64,
     /// Knee to foot centre, m.
     pub shank_m: f64,
+    /// The hip's sideways offset from the abduction axis, m (along the leg's
+    /// own y axis; positive: left).
+    pub hip_offset_m: f64,
     /// Which way the knee bends: `1.0` swings the foot backwards (the knee points
     /// forwards, like a dog's hind leg), `-1.0` the other way (like its elbow).
     pub knee_sign: f64,
@@ -25,26 +29,31 @@ pub struct LegAngles {
     pub knee: f64,
 }
 
-/// The foot's position relative to the hip (body frame: x forwards, y left, z up)
-/// for these angles.
+/// The foot's position relative to the abduction joint (body frame: x forwards,
+/// y left, z up) for these angles.
 pub fn forward(g: &LegGeometry, a: &LegAngles) -> [f64; 3] {
     // In the leg's plane (after abduction): rotation about y by q maps a vector
     // pointing down (0, 0, -l) to (-l sin q, 0, -l cos q).
     let x = -g.thigh_m * a.hip.sin() - g.shank_m * (a.hip + a.knee).sin();
     let down = g.thigh_m * a.hip.cos() + g.shank_m * (a.hip + a.knee).cos();
-    // Abduction rotates (0, 0, -down) about x: y = down sin(q), z = -down cos(q).
-    [x, down * a.abduction.sin(), -down * a.abduction.cos()]
+    // Abduction rotates (0, d, -down) about x.
+    let (s, c) = a.abduction.sin_cos();
+    let d = g.hip_offset_m;
+    [x, d * c + down * s, d * s - down * c]
 }
 
-/// The joint angles that put the foot at `p` relative to the hip, or `None` if it
-/// is out of reach.
+/// The joint angles that put the foot at `p` relative to the abduction joint,
+/// or `None` if it is out of reach.
 pub fn inverse(g: &LegGeometry, p: [f64; 3]) -> Option<LegAngles> {
     let [x, y, z] = p;
-    let down = (y * y + z * z).sqrt();
-    if down <= 0.0 {
+    let d = g.hip_offset_m;
+    // In the abduction plane, the foot is `down` below the hip, which is `d`
+    // beside the axis: the foot's angle from straight down, less the hip's.
+    let down = (y * y + z * z - d * d).sqrt();
+    if down.is_nan() || down <= 0.0 {
         return None;
     }
-    let abduction = y.atan2(-z);
+    let abduction = y.atan2(-z) - d.atan2(down);
     // Planar two-link problem in the leg's plane: reach (x, -down).
     let r2 = x * x + down * down;
     let (l1, l2) = (g.thigh_m, g.shank_m);
@@ -73,6 +82,7 @@ mod tests {
             let g = LegGeometry {
                 thigh_m: 0.07,
                 shank_m: 0.07,
+                hip_offset_m: 0.0,
                 knee_sign,
             };
             for &p in &[
@@ -96,8 +106,35 @@ mod tests {
         let g = LegGeometry {
             thigh_m: 0.07,
             shank_m: 0.07,
+            hip_offset_m: 0.0,
             knee_sign: 1.0,
         };
         assert!(inverse(&g, [0.0, 0.0, -0.2]).is_none());
+    }
+
+    #[test]
+    fn an_offset_hip_reaches_its_targets() {
+        for (hip_offset_m, knee_sign) in [(0.08, 1.0), (-0.08, -1.0), (0.03, -1.0)] {
+            let g = LegGeometry {
+                thigh_m: 0.2,
+                shank_m: 0.2,
+                hip_offset_m,
+                knee_sign,
+            };
+            for &p in &[
+                [0.0, hip_offset_m, -0.3],
+                [0.1, hip_offset_m + 0.02, -0.28],
+                [-0.12, hip_offset_m - 0.03, -0.25],
+            ] {
+                let a = inverse(&g, p).expect("reachable");
+                let q = forward(&g, &a);
+                for i in 0..3 {
+                    assert!((p[i] - q[i]).abs() < 1e-12, "{p:?} -> {a:?} -> {q:?}");
+                }
+            }
+            // Standing straight below the hip needs no abduction.
+            let a = inverse(&g, [0.0, hip_offset_m, -0.3]).expect("reachable");
+            assert!(a.abduction.abs() < 1e-12, "{a:?}");
+        }
     }
 }

@@ -187,8 +187,8 @@ pub struct QuadrupedSim {
     config: SimConfig,
     world: PhysicsWorld,
     torso: RigidBodyHandle,
-    head: RigidBodyHandle,
-    camera_in_head: Pose,
+    camera_parent: RigidBodyHandle,
+    camera_mount: Pose,
     /// Per leg: abduction, hip, knee.
     joints: Vec<[MultibodyJointHandle; 3]>,
     torque_limits: Vec<[f64; 3]>,
@@ -298,8 +298,10 @@ impl QuadrupedSim {
         };
         // A checked description has these; the loader could still merge them away.
         let no_link = |link: &str| RobotError::MissingLink { link: link.into() };
-        let torso = body_of("torso").ok_or_else(|| no_link("torso"))?;
-        let head = body_of("head").ok_or_else(|| no_link("head"))?;
+        let torso =
+            body_of(&description.root_link).ok_or_else(|| no_link(&description.root_link))?;
+        let camera_parent = body_of(&description.camera.parent)
+            .ok_or_else(|| no_link(&description.camera.parent))?;
         let mut joints = Vec::new();
         let mut torque_limits = Vec::new();
         let mut speed_limits = Vec::new();
@@ -315,8 +317,8 @@ impl QuadrupedSim {
             speed_limits.extend(leg.velocity_rad_s.map(|v| v * config.servo.speed_scale));
         }
 
-        let (t, rpy) = description.camera_in_head;
-        let camera_in_head = Pose::from_parts(
+        let (t, rpy) = (description.camera.xyz, description.camera.rpy);
+        let camera_mount = Pose::from_parts(
             Vector::new(t[0] as Real, t[1] as Real, t[2] as Real),
             Rotation::from_euler(
                 rapier3d::glamx::EulerRot::XYZ,
@@ -342,8 +344,8 @@ impl QuadrupedSim {
             config,
             world,
             torso,
-            head,
-            camera_in_head,
+            camera_parent,
+            camera_mount,
             joints,
             torque_limits,
             speed_limits,
@@ -601,7 +603,7 @@ impl QuadrupedSim {
 
     /// Ground truth: the camera's pose in the world (optical axis +x, image up +z).
     pub fn camera_pose(&self) -> Pose {
-        *self.world.bodies[self.head].position() * self.camera_in_head
+        *self.world.bodies[self.camera_parent].position() * self.camera_mount
     }
 
     /// The robot's multibody (for tests of the physics itself).

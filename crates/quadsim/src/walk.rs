@@ -94,7 +94,7 @@ impl WalkEngine {
                 for k in 0..PHASES {
                     let phase = f64::from(k) / f64::from(PHASES);
                     let FootTarget { x, outwards, z } = foot_target(&p, p.step_length_m, phase);
-                    let target_m = [x, leg.side * outwards, z];
+                    let target_m = [x, leg.side * outwards + leg.geometry.hip_offset_m, z];
                     let Some(a) = ik::inverse(&leg.geometry, target_m) else {
                         return Err(RobotError::GaitOutOfReach {
                             leg: description.name,
@@ -147,7 +147,10 @@ impl WalkEngine {
                 let step = ramp * (p.step_length_m - leg.side * steer_m);
                 let phase = (self.clock.phase() + leg.phase_offset).fract();
                 let FootTarget { x, outwards, z } = foot_target(&p, step, phase);
-                ik::inverse(&leg.geometry, [x, leg.side * outwards, z])
+                ik::inverse(
+                    &leg.geometry,
+                    [x, leg.side * outwards + leg.geometry.hip_offset_m, z],
+                )
             })
             .collect()
     }
