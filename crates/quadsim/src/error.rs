@@ -77,6 +77,14 @@ pub enum RobotError {
     /// The camera frame is not fixed to the head.
     #[error("the `camera` link must be fixed directly to `head`")]
     CameraNotOnHead,
+    /// A robot file cannot be read or used.
+    #[error("robot file {file}: {reason}")]
+    RobotFile {
+        /// The file.
+        file: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// The camera's mount cannot be used.
     #[error("camera: {reason}")]
     BadCamera {

@@ -18,6 +18,8 @@ pub mod error;
 pub mod gait;
 pub mod heading;
 pub mod ik;
+pub mod robot_file;
+pub mod scale;
 pub mod servo;
 pub mod sim;
 pub mod vision;
@@ -25,6 +27,8 @@ pub mod walk;
 
 pub use description::{LEG_NAMES, RobotDescription};
 pub use error::{RobotError, SimConfigError, SimError};
+pub use robot_file::RobotFile;
+pub use scale::RobotScale;
 pub use sim::{QuadrupedSim, SimConfig, TorsoState};
 pub use vision::{CameraConfig, Frame, NoReading};
 

@@ -1,0 +1,146 @@
+//! Robot files: the shipped robots load, the ERS-7's file describes the same
+//! robot as its bare URDF, the scaling rules leave the ERS-7's settings as they
+//! are, a robot file that cannot be used names the file and what is wrong, and
+//! every shipped robot stays on its feet stepping in place and walking.
+
+use std::path::PathBuf;
+
+use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, RobotFile, RobotScale, SimConfig};
+
+fn assets() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/robots")
+}
+
+#[test]
+fn every_shipped_robot_loads_from_its_name_and_its_path() {
+    for name in RobotFile::shipped_names() {
+        let shipped = RobotFile::shipped(name).expect("shipped robot");
+        let from_path = RobotFile::load(
+            assets()
+                .join(format!("{name}.toml"))
+                .to_str()
+                .expect("utf-8 path"),
+        )
+        .expect("robot file on disk");
+        assert_eq!(shipped.name, name);
+        assert_eq!(shipped.urdf_text, from_path.urdf_text, "{name}");
+        assert_eq!(shipped.description.legs, from_path.description.legs);
+    }
+}
+
+#[test]
+fn the_ers7_file_is_the_default_robot_and_scales_to_the_defaults() {
+    let file = RobotFile::shipped("ers7").expect("ers7");
+    let bare = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
+    assert_eq!(file.description.legs, bare.legs);
+    assert_eq!(file.description.camera, bare.camera);
+    assert_eq!(file.description.root_link, "torso");
+    assert_eq!(RobotScale::of(&file.description), RobotScale::ONE);
+    assert_eq!(SimConfig::for_robot(&file.description), SimConfig::default());
+}
+
+#[test]
+fn the_trotter_is_a_research_class_robot_with_offset_hips() {
+    let d = RobotFile::shipped("trotter").expect("trotter").description;
+    assert!(
+        (10.0..=15.0).contains(&d.total_mass_kg),
+        "{}",
+        d.total_mass_kg
+    );
+    for leg in &d.legs {
+        assert!((leg.thigh_m - 0.2).abs() < 1e-9 && (leg.shank_m - 0.2).abs() < 1e-9);
+        assert!((leg.hip_offset_m.abs() - 0.08).abs() < 1e-9);
+        assert_eq!(leg.hip_offset_m.signum(), leg.side());
+        assert_eq!(leg.effort_nm, [24.0; 3]);
+    }
+    let scale = RobotScale::of(&d);
+    assert!((scale.length - 0.4 / 0.14).abs() < 1e-9, "{scale:?}");
+    let c = SimConfig::for_robot(&d);
+    let base = SimConfig::default();
+    // Froude scaling: lengths by s, periods and speeds by sqrt(s).
+    let s = scale.length;
+    let g = (c.walk.gait, base.walk.gait);
+    assert!((g.0.idle.body_height_m - s * g.1.idle.body_height_m).abs() < 1e-12);
+    assert!((g.0.fast_forwards.period_s - s.sqrt() * g.1.fast_forwards.period_s).abs() < 1e-12);
+    assert!((g.0.v_max_mm_s - s.sqrt() * g.1.v_max_mm_s).abs() < 1e-9);
+    assert!((c.beacon.band_height_m - s * base.beacon.band_height_m).abs() < 1e-12);
+    assert!(
+        (c.servo.kp_nm_per_rad - scale.mass * s * base.servo.kp_nm_per_rad).abs() < 1e-9
+    );
+}
+
+fn write(dir: &std::path::Path, name: &str, text: &str) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write");
+    path
+}
+
+fn expect_error(robot_toml: &str, needles: &[&str]) {
+    let dir = std::env::temp_dir().join(format!(
+        "quadsim-robot-file-{}-{}",
+        std::process::id(),
+        needles[0].len()
+    ));
+    std::fs::create_dir_all(&dir).expect("dir");
+    write(&dir, "robot.urdf", ERS7_URDF);
+    let path = write(&dir, "robot.toml", robot_toml);
+    let err = RobotFile::from_file(&path).expect_err("must be refused");
+    let msg = err.to_string();
+    assert!(msg.contains("robot.toml"), "`{msg}` should name the file");
+    for needle in needles {
+        assert!(msg.contains(needle), "`{msg}` should mention `{needle}`");
+    }
+}
+
+const ERS7_FILE: &str = include_str!("../../../assets/robots/ers7.toml");
+
+#[test]
+fn an_unusable_robot_file_names_the_file_and_the_fault() {
+    let local = ERS7_FILE.replace("../ers7.urdf", "robot.urdf");
+    expect_error(
+        &local.replace("name = \"ers7\"", "name = \"ers7\"\nwheels = 4"),
+        &["wheels"],
+    );
+    expect_error(
+        &local.replace("robot.urdf", "missing.urdf"),
+        &["missing.urdf"],
+    );
+    expect_error(&local.replace("\"hl_knee\"", "\"hl_kne\""), &["hl_kne"]);
+    expect_error(
+        &local.replace("parent = \"head\"", "parent = \"antenna\""),
+        &["antenna"],
+    );
+    expect_error(
+        &local.replace("xyz = [0.041, 0.0, 0.005]", "xyz = [0.041, 0.0]"),
+        &["xyz"],
+    );
+    assert!(RobotFile::load("no-such-robot").is_err());
+}
+
+/// Seconds at `command` (a fraction of the robot's scaled top command): the
+/// robot stays upright throughout.
+fn stays_upright(d: &RobotDescription, fraction: f64, seconds: f64) -> bool {
+    let scale = RobotScale::of(d);
+    let mut sim = QuadrupedSim::new(d, SimConfig::for_robot(d)).expect("sim");
+    sim.set_command(300.0 * scale.speed() * fraction)
+        .expect("command");
+    let mut upright = true;
+    for _ in 0..(seconds / 0.1) as usize {
+        sim.advance(0.1);
+        upright &= sim.is_upright();
+    }
+    upright
+}
+
+#[test]
+fn every_shipped_robot_stays_upright_in_place_forwards_and_backwards() {
+    for name in RobotFile::shipped_names() {
+        let d = RobotFile::shipped(name).expect("robot").description;
+        for fraction in [0.0, 1.0, -1.0] {
+            assert!(
+                stays_upright(&d, fraction, 6.0),
+                "{name} fell at {fraction} of its top command"
+            );
+        }
+    }
+}
