@@ -40,6 +40,11 @@ struct Args {
     /// trial.duration=60.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     set: Vec<String>,
+    /// The robot: a shipped robot's name or a robot file's path (default:
+    /// ers7) [robot.file]. The suite's scenarios set some world values in
+    /// metres for the ERS-7's scale.
+    #[arg(long, value_name = "NAME_OR_PATH")]
+    robot: Option<String>,
     /// The suite's directory.
     #[arg(long, default_value = benchmark::SUITE_DIR)]
     suite: PathBuf,
@@ -74,7 +79,13 @@ fn main() -> Result<()> {
     let (first, end) =
         scenario::parse_seeds(&args.seeds).map_err(|e| anyhow::anyhow!("--seeds: {e}"))?;
     let seeds: Vec<u64> = (first..end).collect();
-    let suite = benchmark::load_suite(&args.suite, &args.scenarios, &args.set)?;
+    let settings: Vec<String> = args
+        .robot
+        .iter()
+        .map(|r| format!("robot.file={r}"))
+        .chain(args.set.iter().cloned())
+        .collect();
+    let suite = benchmark::load_suite(&args.suite, &args.scenarios, &settings)?;
     let out = scasm_testbed::create_run_dir(args.out.as_deref(), "benchmark")?;
     let made_by = Provenance::current();
     for s in &suite {

@@ -26,8 +26,8 @@ fn main() -> Result<()> {
     let scenario = args.scenario.scenario()?;
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
-    let commands = measure::paper_commands();
-    let stopwatch = StopwatchConfig::default();
+    let commands = measure::paper_commands(scenario.scale());
+    let stopwatch = StopwatchConfig::scaled(scenario.scale());
     let measured = measure::measure_action(description, sim_config, &stopwatch, &commands)?;
     let wall = started.elapsed().as_secs_f64();
 

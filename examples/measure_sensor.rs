@@ -58,7 +58,7 @@ fn main() -> Result<()> {
     ensure!(args.readings > 0, "--readings must be at least 1");
     let scenario = args.scenario.scenario()?;
     let (description, config) = (&scenario.description, scenario.sim);
-    let distances = measure::paper_distances_m();
+    let distances = measure::paper_distances_m(scenario.scale());
     let started = std::time::Instant::now();
     let action = reference::measured_models(&scenario, Some(&args.cache))?.action;
     let hold = measure::hold_command(&action);

@@ -9,7 +9,12 @@ use testbed::scenario::{Scenario, SettingError};
 /// The flags that choose a scenario: robot, scenario file, and settings.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ScenarioArgs {
-    /// Robot description (default: the shipped assets/ers7.urdf) [robot.urdf].
+    /// The robot: a shipped robot's name (ers7, trotter: assets/robots/) or a
+    /// robot file's path (default: ers7) [robot.file].
+    #[arg(long, value_name = "NAME_OR_PATH")]
+    pub robot: Option<String>,
+    /// A bare URDF in the shipped robot's naming, walked with the default gait
+    /// (a robot file is the general way) [robot.urdf].
     #[arg(long)]
     pub urdf: Option<PathBuf>,
     /// A scenario file (TOML, e.g. assets/scenarios/paper.toml, or a run's
@@ -29,7 +34,11 @@ impl ScenarioArgs {
 
     /// The scenario these flags ask for, then `extra` settings on top.
     pub fn scenario_with(&self, extra: &[String]) -> Result<Scenario, SettingError> {
-        let settings: Vec<String> = self.set.iter().chain(extra).cloned().collect();
+        let robot = self.robot.iter().map(|r| format!("robot.file={r}"));
+        let settings: Vec<String> = robot
+            .chain(self.set.iter().cloned())
+            .chain(extra.iter().cloned())
+            .collect();
         Scenario::from_settings(self.urdf.as_deref(), self.config.as_deref(), &settings)
     }
 }

@@ -27,7 +27,7 @@ fn config(seed: u64, duration_s: f64) -> TrialConfig {
     TrialConfig {
         duration_s,
         seed,
-        behaviour: experiment::behaviour_for(&setup().1),
+        behaviour: experiment::behaviour_for(&setup().0, &setup().1),
         judge_every_s: 5.0,
     }
 }

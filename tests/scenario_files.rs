@@ -103,3 +103,44 @@ fn a_robot_that_cannot_walk_the_gait_is_refused_naming_its_file() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_robot_file_sets_the_robot_and_the_world_at_its_scale_before_anything_else() {
+    // The robot is applied first wherever it is set: a beacon setting given
+    // before it still holds.
+    let settings = [
+        "beacon.height_m=0.9".to_string(),
+        "robot.file=trotter".to_string(),
+    ];
+    let s = Scenario::from_settings(None, None, &settings).expect("trotter");
+    let scale = s.scale();
+    assert!((scale.length - 0.4 / 0.14).abs() < 1e-9, "{scale:?}");
+    assert_eq!(s.description.root_link, "trunk");
+    assert_eq!(s.sim.beacon.band_height_m, 0.9);
+    let base = Scenario::paper().expect("paper");
+    assert!((s.sim.start_distance_m - scale.length * base.sim.start_distance_m).abs() < 1e-9);
+    assert!((s.max_command() - 300.0 * scale.speed()).abs() < 1e-9);
+    assert!((s.learner.command_scale - s.max_command()).abs() < 1e-9);
+    assert_ne!(s.reference_key(), base.reference_key());
+    // Written out, it reads back to the same scenario.
+    let mut again = Scenario::paper().expect("paper");
+    again
+        .apply_toml("config.toml", &s.to_toml())
+        .expect("round trip");
+    assert_eq!(again.sim, s.sim);
+    assert_eq!(again.reference_key(), s.reference_key());
+    // The ERS-7 by name is the default robot, to the bit.
+    let ers7 = Scenario::from_settings(None, None, &["robot.file=ers7".to_string()])
+        .expect("ers7");
+    assert_eq!(ers7.sim, base.sim);
+    assert_eq!(ers7.learner, base.learner);
+}
+
+#[test]
+fn an_unknown_robot_is_named_and_changes_nothing() {
+    let mut s = Scenario::paper().expect("scenario");
+    let before = s.reference_key();
+    let err = s.set("robot.file=no_such_robot").expect_err("refused");
+    assert!(err.to_string().contains("no_such_robot"), "{err}");
+    assert_eq!(s.reference_key(), before);
+}

@@ -87,16 +87,17 @@ impl RobotFile {
 
     /// A shipped robot by name.
     pub fn shipped(name: &str) -> Result<Self, RobotError> {
-        let (_, text, urdf_text) = SHIPPED
-            .iter()
-            .find(|(n, ..)| *n == name)
-            .ok_or_else(|| RobotError::RobotFile {
-                file: format!("{name} (a shipped robot)"),
-                reason: format!(
-                    "no such robot; shipped: {}",
-                    Self::shipped_names().collect::<Vec<_>>().join(", ")
-                ),
-            })?;
+        let (_, text, urdf_text) =
+            SHIPPED
+                .iter()
+                .find(|(n, ..)| *n == name)
+                .ok_or_else(|| RobotError::RobotFile {
+                    file: format!("{name} (a shipped robot)"),
+                    reason: format!(
+                        "no such robot; shipped: {}",
+                        Self::shipped_names().collect::<Vec<_>>().join(", ")
+                    ),
+                })?;
         let label = format!("assets/robots/{name}.toml");
         let file = parse(&label, text)?;
         Self::build(&label, None, text, file, urdf_text.to_string())
@@ -150,13 +151,12 @@ impl RobotFile {
                 rpy: file.camera.rpy,
             },
         };
-        let description =
-            RobotDescription::from_urdf_str_with(&urdf_text, &map).map_err(|e| {
-                RobotError::RobotFile {
-                    file: format!("{label} (URDF {})", file.urdf.display()),
-                    reason: e.to_string(),
-                }
-            })?;
+        let description = RobotDescription::from_urdf_str_with(&urdf_text, &map).map_err(|e| {
+            RobotError::RobotFile {
+                file: format!("{label} (URDF {})", file.urdf.display()),
+                reason: e.to_string(),
+            }
+        })?;
         Ok(Self {
             name: file.name,
             path,

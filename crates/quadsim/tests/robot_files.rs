@@ -36,7 +36,10 @@ fn the_ers7_file_is_the_default_robot_and_scales_to_the_defaults() {
     assert_eq!(file.description.camera, bare.camera);
     assert_eq!(file.description.root_link, "torso");
     assert_eq!(RobotScale::of(&file.description), RobotScale::ONE);
-    assert_eq!(SimConfig::for_robot(&file.description), SimConfig::default());
+    assert_eq!(
+        SimConfig::for_robot(&file.description),
+        SimConfig::default()
+    );
 }
 
 #[test]
@@ -64,9 +67,7 @@ fn the_trotter_is_a_research_class_robot_with_offset_hips() {
     assert!((g.0.fast_forwards.period_s - s.sqrt() * g.1.fast_forwards.period_s).abs() < 1e-12);
     assert!((g.0.v_max_mm_s - s.sqrt() * g.1.v_max_mm_s).abs() < 1e-9);
     assert!((c.beacon.band_height_m - s * base.beacon.band_height_m).abs() < 1e-12);
-    assert!(
-        (c.servo.kp_nm_per_rad - scale.mass * s * base.servo.kp_nm_per_rad).abs() < 1e-9
-    );
+    assert!((c.servo.kp_nm_per_rad - scale.mass * s * base.servo.kp_nm_per_rad).abs() < 1e-9);
 }
 
 fn write(dir: &std::path::Path, name: &str, text: &str) -> PathBuf {

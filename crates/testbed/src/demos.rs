@@ -56,7 +56,8 @@ pub fn run_demos(
         .map_err(|e| TrialError::LearnerSetup(e.to_string()))?;
     let learner =
         |mode| Scasm::new(params, mode).map_err(|e| TrialError::LearnerSetup(e.to_string()));
-    let behaviour = behaviour_for(models);
+    let behaviour = behaviour_for(scenario, models);
+    let scale = scenario.scale();
     let config = TrialConfig {
         duration_s: MAX_DEMO_S,
         seed,
@@ -66,11 +67,11 @@ pub fn run_demos(
 
     let far_m = models.sensor.last().map_or(3.6, |s| s.distance_mm / 1000.0);
     let mut walk_sim = scenario.sim;
-    walk_sim.start_distance_m = far_m + CONSTANT_WALK_LEAD_M;
+    walk_sim.start_distance_m = far_m + CONSTANT_WALK_LEAD_M * scale.length;
     // The walk crosses the whole test range: it stops at the nearest measured
     // point's reading.
     let walk = ConstantWalk {
-        command: CONSTANT_COMMAND,
+        command: CONSTANT_COMMAND * scale.speed(),
         near_obs_px: models
             .sensor
             .first()

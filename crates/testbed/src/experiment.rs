@@ -29,7 +29,8 @@ pub const TURN_FAR_BEYOND_M: f64 = 0.05;
 /// [`TURN_FAR_BEYOND_M`] beyond the farthest test distance, from the pinhole law
 /// `d = a + b / obs` fitted to the measured points (or at the end points' own
 /// readings if that fit fails).
-pub fn behaviour_for(models: &MeasuredModels) -> BehaviourConfig {
+pub fn behaviour_for(scenario: &Scenario, models: &MeasuredModels) -> BehaviourConfig {
+    let length = scenario.scale().length;
     let end = |i: usize| {
         models
             .sensor
@@ -47,14 +48,14 @@ pub fn behaviour_for(models: &MeasuredModels) -> BehaviourConfig {
             let (a, b) = (p.coeffs()[0], p.coeffs()[1]);
             let obs_at = |d_mm: f64| b / (d_mm - a);
             (
-                obs_at(near.0 + 1000.0 * TURN_NEAR_INSIDE_M),
-                obs_at(far.0 + 1000.0 * TURN_FAR_BEYOND_M),
+                obs_at(near.0 + 1000.0 * TURN_NEAR_INSIDE_M * length),
+                obs_at(far.0 + 1000.0 * TURN_FAR_BEYOND_M * length),
             )
         }
         _ => (near.1, far.1),
     };
     BehaviourConfig {
-        max_command: 300.0,
+        max_command: scenario.max_command(),
         hold_s: 3.0,
         near_obs_px,
         far_obs_px,
@@ -70,7 +71,7 @@ pub fn trial_config(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> 
     TrialConfig {
         duration_s: scenario.duration_s,
         seed,
-        behaviour: behaviour_for(models),
+        behaviour: behaviour_for(scenario, models),
         judge_every_s: JUDGE_EVERY_S,
     }
 }

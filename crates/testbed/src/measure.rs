@@ -3,7 +3,7 @@
 //! marked distances. These are the references the learned models are judged
 //! against.
 
-use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
+use quadsim::{QuadrupedSim, RobotDescription, RobotScale, SimConfig, SimError};
 use rayon::prelude::*;
 
 /// The stopwatch protocol's settings.
@@ -43,6 +43,24 @@ impl Default for StopwatchConfig {
             max_timing_s: 4.0,
             forwards_start_m: 4.2,
             backwards_start_m: 1.0,
+        }
+    }
+}
+
+impl StopwatchConfig {
+    /// The protocol at the robot's scale: distances by `scale.length`, times by
+    /// `scale.time()` (the defaults for the ERS-7).
+    pub fn scaled(scale: RobotScale) -> Self {
+        let (s, t) = (scale.length, scale.time());
+        let d = Self::default();
+        Self {
+            stand_s: d.stand_s * t,
+            settle_s: d.settle_s * t,
+            distance_m: d.distance_m * s,
+            repeats: d.repeats,
+            max_timing_s: d.max_timing_s * t,
+            forwards_start_m: d.forwards_start_m * s,
+            backwards_start_m: d.backwards_start_m * s,
         }
     }
 }
@@ -163,9 +181,12 @@ pub struct MeasuredReading {
     pub missed: usize,
 }
 
-/// The paper's 13 distances: 1.2, 1.4, ..., 3.6 m.
-pub fn paper_distances_m() -> Vec<f64> {
-    (0..13).map(|k| 1.2 + 0.2 * f64::from(k)).collect()
+/// The paper's 13 distances, 1.2, 1.4, ..., 3.6 m, at the robot's scale
+/// (`scale.length` times these).
+pub fn paper_distances_m(scale: RobotScale) -> Vec<f64> {
+    (0..13)
+        .map(|k| (1.2 + 0.2 * f64::from(k)) * scale.length)
+        .collect()
 }
 
 /// Stands the robot at `distance_m`, stepping in place with `hold_command`, and
@@ -272,9 +293,12 @@ pub fn hold_command(measured: &[MeasuredVelocity]) -> f64 {
     crossing.unwrap_or(0.0)
 }
 
-/// The paper's 31 commands: every multiple of 20 in [-300, 300].
-pub fn paper_commands() -> Vec<f64> {
-    (-15..=15).map(|k| 20.0 * f64::from(k)).collect()
+/// The paper's 31 commands, every multiple of 20 in [-300, 300], at the
+/// robot's scale (`scale.speed()` times these).
+pub fn paper_commands(scale: RobotScale) -> Vec<f64> {
+    (-15..=15)
+        .map(|k| 20.0 * f64::from(k) * scale.speed())
+        .collect()
 }
 
 /// Measures every command, in parallel, in the order given.

@@ -101,8 +101,11 @@ fn span(values: impl Iterator<Item = f64>) -> f64 {
 pub fn key(scenario: &Scenario) -> String {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     scenario.urdf_text.hash(&mut h);
+    if let Some((_, robot_text)) = &scenario.robot_file {
+        robot_text.hash(&mut h);
+    }
     format!("{:?}", scenario.sim).hash(&mut h);
-    format!("{:?}", StopwatchConfig::default()).hash(&mut h);
+    format!("{:?}", StopwatchConfig::scaled(scenario.scale())).hash(&mut h);
     MEASURE_READINGS.hash(&mut h);
     PROTOCOL_VERSION.hash(&mut h);
     format!("{:016x}", h.finish())
@@ -134,16 +137,17 @@ pub fn measured_models(
             });
         }
     }
+    let scale = scenario.scale();
     let action = measure::measure_action(
         &scenario.description,
         scenario.sim,
-        &StopwatchConfig::default(),
-        &measure::paper_commands(),
+        &StopwatchConfig::scaled(scale),
+        &measure::paper_commands(scale),
     )?;
     let sensor = measure::measure_sensor(
         &scenario.description,
         scenario.sim,
-        &measure::paper_distances_m(),
+        &measure::paper_distances_m(scale),
         MEASURE_READINGS,
         measure::hold_command(&action),
     )?;

@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use quadsim::{RobotDescription, SimConfig, SimError};
+use quadsim::{RobotDescription, RobotFile, RobotScale, SimConfig, SimError};
 use scasm::ScasmConfig;
 use serde::{Deserialize, Serialize};
 
@@ -62,6 +62,9 @@ pub struct Scenario {
     pub urdf_text: String,
     /// Where the URDF was read from (`None`: the shipped robot).
     pub urdf_path: Option<PathBuf>,
+    /// The robot file, as named (a shipped robot's name or a path), and its
+    /// text (`None`: the default ERS-7, or a bare `robot.urdf`).
+    pub robot_file: Option<(String, String)>,
     /// The world, robot controllers and camera.
     pub sim: SimConfig,
     /// The learner's name (see [`crate::learners`]).
@@ -90,7 +93,8 @@ enum Kind {
 
 /// Every setting: its key and type. `--set`, scenario files and a run's
 /// `config.toml` all use these.
-const SETTINGS: [(&str, Kind); 26] = [
+const SETTINGS: [(&str, Kind); 27] = [
+    ("robot.file", Kind::Text),
     ("robot.urdf", Kind::Text),
     ("trial.duration", Kind::Number),
     ("trial.seeds", Kind::Text),
@@ -134,6 +138,7 @@ impl Scenario {
             description: RobotDescription::from_urdf_str(&urdf_text).map_err(SimError::from)?,
             urdf_text,
             urdf_path: None,
+            robot_file: None,
             sim: SimConfig::default(),
             learner_name: crate::learners::DEFAULT.into(),
             learner: ScasmConfig::default(),
@@ -153,7 +158,9 @@ impl Scenario {
 
     /// [`Scenario::paper`] with the robot of `urdf` (default: the shipped one),
     /// then a scenario file's settings (if any), then `key=value` settings in
-    /// order: what a command line asks for.
+    /// order: what a command line asks for. The robot is chosen first wherever
+    /// it is set (`robot.*` settings reset the world to the robot's scale, see
+    /// [`RobotScale`]), so other settings always apply on top of it.
     pub fn from_settings(
         urdf: Option<&Path>,
         file: Option<&Path>,
@@ -173,7 +180,10 @@ impl Scenario {
             })?;
             scenario.apply_toml(&path.display().to_string(), &text)?;
         }
-        for s in settings {
+        let (robot, rest): (Vec<&String>, Vec<&String>) = settings
+            .iter()
+            .partition(|s| s.trim_start().starts_with("robot."));
+        for s in robot.into_iter().chain(rest) {
             scenario.set(s)?;
         }
         Ok(scenario)
@@ -190,7 +200,12 @@ impl Scenario {
             .parse()
             .map_err(|e: toml::de::Error| file_error(e.to_string()))?;
         let mut changed = self.clone();
-        for (section, entries) in &table {
+        // The robot first: it resets the world to its scale.
+        let robot_first = table
+            .iter()
+            .filter(|(section, _)| *section == "robot")
+            .chain(table.iter().filter(|(section, _)| *section != "robot"));
+        for (section, entries) in robot_first {
             let toml::Value::Table(entries) = entries else {
                 return Err(file_error(format!(
                     "`{section}` must be a [section] of settings"
@@ -251,6 +266,25 @@ impl Scenario {
             value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
         };
         match key {
+            "robot.file" => {
+                let robot = RobotFile::load(value).map_err(|e| SettingError::File {
+                    file: value.into(),
+                    reason: e.to_string(),
+                })?;
+                let sim = SimConfig::for_robot(&robot.description);
+                quadsim::walk::WalkEngine::check_feasible(&sim.walk, &robot.description.legs)
+                    .map_err(|e| SettingError::File {
+                        file: value.into(),
+                        reason: e.to_string(),
+                    })?;
+                self.learner.command_scale = ScasmConfig::default().command_scale
+                    * RobotScale::of(&robot.description).speed();
+                self.sim = sim;
+                self.description = robot.description;
+                self.urdf_text = robot.urdf_text;
+                self.urdf_path = None;
+                self.robot_file = Some((value.into(), robot.text));
+            }
             "robot.urdf" => {
                 let (text, description) = read_urdf(Path::new(value))?;
                 // A robot that cannot walk the gait is refused here, naming
@@ -263,6 +297,7 @@ impl Scenario {
                 self.description = description;
                 self.urdf_text = text;
                 self.urdf_path = Some(PathBuf::from(value));
+                self.robot_file = None;
             }
             "trial.duration" => {
                 let d = number()?;
@@ -335,6 +370,11 @@ impl Scenario {
         use toml::Value::{Float, Integer, String as Text};
         let count = |n: usize| Integer(n as i64);
         Some(match key {
+            "robot.file" => Text(
+                self.robot_file
+                    .as_ref()
+                    .map_or_else(String::new, |(name, _)| name.clone()),
+            ),
             "robot.urdf" => Text(
                 self.urdf_path
                     .as_ref()
@@ -383,7 +423,9 @@ impl Scenario {
         let mut table = toml::Table::new();
         for key in setting_keys() {
             let Some(value) = self.get(key) else { continue };
-            if key == "robot.urdf" && self.urdf_path.is_none() {
+            if (key == "robot.urdf" && self.urdf_path.is_none())
+                || (key == "robot.file" && self.robot_file.is_none())
+            {
                 continue;
             }
             let (section, name) = key.split_once('.').unwrap_or(("", key));
@@ -395,6 +437,21 @@ impl Scenario {
             }
         }
         toml::to_string(&table).unwrap_or_default()
+    }
+
+    /// The robot's size relative to the ERS-7 (see [`RobotScale`]): the test
+    /// range, the protocols' distances and the commands scale with it.
+    pub fn scale(&self) -> RobotScale {
+        if self.robot_file.is_some() {
+            RobotScale::of(&self.description)
+        } else {
+            RobotScale::ONE
+        }
+    }
+
+    /// The largest walk command, mm/s: the paper's 300 at the robot's scale.
+    pub fn max_command(&self) -> f64 {
+        300.0 * self.scale().speed()
     }
 
     /// A key identifying what the measured reference depends on (robot, world,
