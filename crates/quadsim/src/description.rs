@@ -190,7 +190,7 @@ impl RobotDescription {
             }
             total_mass_kg += m;
         }
-        if !(total_mass_kg > 0.0) {
+        if !total_mass_kg.is_finite() || total_mass_kg <= 0.0 {
             return Err(RobotError::BadInertia {
                 link: root_link,
                 reason: "the robot has no mass".into(),
