@@ -130,8 +130,7 @@ fn a_robot_file_sets_the_robot_and_the_world_at_its_scale_before_anything_else()
     assert_eq!(again.sim, s.sim);
     assert_eq!(again.reference_key(), s.reference_key());
     // The ERS-7 by name is the default robot, to the bit.
-    let ers7 = Scenario::from_settings(None, None, &["robot.file=ers7".to_string()])
-        .expect("ers7");
+    let ers7 = Scenario::from_settings(None, None, &["robot.file=ers7".to_string()]).expect("ers7");
     assert_eq!(ers7.sim, base.sim);
     assert_eq!(ers7.learner, base.learner);
 }
