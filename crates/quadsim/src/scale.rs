@@ -13,7 +13,8 @@
 //!   engine's command slew, an acceleration, stays);
 //! - speeds scale by `sqrt(s)`: Eq. 1's `v_max` and `v_min`, and the commands;
 //! - servo gains scale as torques, `kp` by `mu s` (`m g L` per radian) and `kd`
-//!   by `mu s sqrt(s)`; torque and speed limits are the URDF's own.
+//!   by `mu s sqrt(s)`, and so does the joints' viscous damping; torque and
+//!   speed limits are the URDF's own.
 //!
 //! The camera is unchanged: a beacon `s` times larger seen from `s` times
 //! farther fills the same pixels.
@@ -81,6 +82,7 @@ impl RobotScale {
         c.walk.start_ramp_s *= t;
         c.servo.kp_nm_per_rad *= mu * s;
         c.servo.kd_nm_s_per_rad *= mu * s * t;
+        c.joint_damping_nm_s_per_rad *= mu * s * t;
         c.heading.gain_m_per_rad *= s;
         c.heading.max_steer_m *= s;
         let b = &mut c.beacon;

@@ -28,6 +28,13 @@ pub struct SimConfig {
     pub solver_iterations: usize,
     /// Coulomb friction of the feet and floor.
     pub friction: f64,
+    /// Viscous damping on every rotational degree of freedom of the robot (its
+    /// twelve joints and the torso's free rotation), N m s/rad. rapier gives
+    /// each multibody 0.1 by default; it is set here so that it can scale with
+    /// the robot (see [`crate::scale`]): on the ERS-7 it is nearly as strong as
+    /// the servos' own damping, and left at 0.1 a robot 8 times heavier rocks
+    /// and drifts.
+    pub joint_damping_nm_s_per_rad: f64,
     /// The leg servos.
     pub servo: ServoConfig,
     /// The walk engine.
@@ -50,6 +57,7 @@ impl Default for SimConfig {
             dt_s: 0.004,
             solver_iterations: 1,
             friction: 0.9,
+            joint_damping_nm_s_per_rad: 0.1,
             servo: ServoConfig::default(),
             walk: WalkConfig::default(),
             heading: HeadingConfig::default(),
@@ -64,7 +72,7 @@ impl SimConfig {
     /// Checks every value's range.
     pub fn validate(&self) -> Result<(), SimConfigError> {
         let (b, c) = (&self.beacon, &self.camera);
-        let checks: [(&'static str, f64, bool, &'static str); 17] = [
+        let checks: [(&'static str, f64, bool, &'static str); 18] = [
             (
                 "physics.dt",
                 self.dt_s,
@@ -82,6 +90,12 @@ impl SimConfig {
                 self.friction,
                 self.friction >= 0.0 && self.friction <= 5.0,
                 "in [0, 5]",
+            ),
+            (
+                "physics.joint_damping",
+                self.joint_damping_nm_s_per_rad,
+                self.joint_damping_nm_s_per_rad >= 0.0,
+                ">= 0 N m s/rad",
             ),
             (
                 "servo.kp",
@@ -362,10 +376,22 @@ impl QuadrupedSim {
             latest_frame: None,
             fresh_frame: false,
         };
+        sim.set_joint_damping();
         sim.pose_joints(&initial_angles);
         sim.motorise_joints();
         sim.apply_servos();
         Ok(sim)
+    }
+
+    /// Sets the damping of every rotational degree of freedom (those rapier
+    /// damps by default) to the configured value.
+    fn set_joint_damping(&mut self) {
+        let damping = self.config.joint_damping_nm_s_per_rad as Real;
+        if let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) {
+            for d in mb.damping_mut().iter_mut().filter(|d| **d != 0.0) {
+                *d = damping;
+            }
+        }
     }
 
     /// Places the joints at these angles (abduction, hip, knee per leg) before the
