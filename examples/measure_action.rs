@@ -58,7 +58,7 @@ fn main() -> Result<()> {
     let worst = measured.iter().map(|m| m.std_mm_s).fold(0.0, f64::max);
     let monotone = points.windows(2).all(|w| w[1].1 > w[0].1);
     println!(
-        "\n{} timings of {} m each after {} s of walking at the command",
+        "\n{} timings of {:.2} m each after {:.1} s of walking at the command",
         stopwatch.repeats, stopwatch.distance_m, stopwatch.settle_s
     );
     println!(

@@ -19,6 +19,7 @@ use scasm_testbed::{ScenarioArgs, TrialArgs};
 use testbed::dataset::{self, DatasetMeta};
 use testbed::demos::{Demos, run_demos};
 use testbed::experiment;
+use testbed::measure::StopwatchConfig;
 use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
@@ -99,7 +100,7 @@ fn main() -> Result<()> {
     output::write_measured_sensor(&out, &models.sensor)?;
 
     println!(
-        "Running {} trials of {} s ({:?}, learner {}) on {} threads...",
+        "Running {} trials of {:.0} s ({:?}, learner {}) on {} threads...",
         seeds.len(),
         scenario.duration_s,
         scenario.mode,
@@ -141,7 +142,10 @@ fn main() -> Result<()> {
     let (header, table) = report::table::results_table(aggregate, &models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
-    println!("{}", models.describe());
+    println!(
+        "{}",
+        models.describe(&StopwatchConfig::scaled(scenario.scale()))
+    );
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;
@@ -167,7 +171,7 @@ fn main() -> Result<()> {
         title: "Self-calibration on the simulated quadruped".into(),
         paragraphs: vec![
             format!(
-                "{} trials of {} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
+                "{} trials of {:.0} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
                 rows.len(),
                 scenario.duration_s,
                 scenario.seeds.0,
@@ -181,7 +185,7 @@ fn main() -> Result<()> {
             ),
             format!(
                 "The {} (cache key {}).",
-                models.describe(),
+                models.describe(&StopwatchConfig::scaled(scenario.scale())),
                 scenario.reference_key()
             ),
             format!("Made by {}.", made_by.describe()),

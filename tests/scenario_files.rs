@@ -121,6 +121,11 @@ fn a_robot_file_sets_the_robot_and_the_world_at_its_scale_before_anything_else()
     assert!((s.sim.start_distance_m - scale.length * base.sim.start_distance_m).abs() < 1e-9);
     assert!((s.max_command() - 300.0 * scale.speed()).abs() < 1e-9);
     assert!((s.learner.command_scale - s.max_command()).abs() < 1e-9);
+    // Times scale by sqrt(s): the trial and the learner's time constants.
+    let t = scale.time();
+    assert!((s.duration_s - t * base.duration_s).abs() < 1e-9);
+    assert!((s.learner.t_start_s - t * base.learner.t_start_s).abs() < 1e-9);
+    assert!((s.learner.gamma.powf(t) - base.learner.gamma).abs() < 1e-12);
     assert_ne!(s.reference_key(), base.reference_key());
     // Written out, it reads back to the same scenario.
     let mut again = Scenario::paper().expect("paper");

@@ -52,7 +52,7 @@ fn the_trotter_is_a_research_class_robot_with_offset_hips() {
     );
     for leg in &d.legs {
         assert!((leg.thigh_m - 0.2).abs() < 1e-9 && (leg.shank_m - 0.2).abs() < 1e-9);
-        assert!((leg.hip_offset_m.abs() - 0.08).abs() < 1e-9);
+        assert!((leg.hip_offset_m.abs() - 0.06).abs() < 1e-9);
         assert_eq!(leg.hip_offset_m.signum(), leg.side());
         assert_eq!(leg.effort_nm, [24.0; 3]);
     }
@@ -118,30 +118,42 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
     assert!(RobotFile::load("no-such-robot").is_err());
 }
 
-/// Seconds at `command` (a fraction of the robot's scaled top command): the
-/// robot stays upright throughout.
-fn stays_upright(d: &RobotDescription, fraction: f64, seconds: f64) -> bool {
+/// `seconds` at `fraction` of the robot's top command (its scaled 300 mm/s):
+/// whether it stayed upright, and its mean speed towards the beacon, as a
+/// fraction of the top command.
+fn walk(d: &RobotDescription, fraction: f64, seconds: f64) -> (bool, f64) {
     let scale = RobotScale::of(d);
-    let mut sim = QuadrupedSim::new(d, SimConfig::for_robot(d)).expect("sim");
-    sim.set_command(300.0 * scale.speed() * fraction)
-        .expect("command");
+    let mut config = SimConfig::for_robot(d);
+    // Walking away starts near the beacon, walking towards it far away.
+    config.start_distance_m = if fraction < 0.0 { 1.2 } else { 3.6 } * scale.length;
+    let mut sim = QuadrupedSim::new(d, config).expect("sim");
+    let top = 300.0 * scale.speed();
+    sim.set_command(top * fraction).expect("command");
+    let start = sim.distance_along_line_m();
     let mut upright = true;
     for _ in 0..(seconds / 0.1) as usize {
         sim.advance(0.1);
         upright &= sim.is_upright();
     }
-    upright
+    let speed_mm_s = 1000.0 * (start - sim.distance_along_line_m()) / sim.time_s();
+    (upright, speed_mm_s / top)
 }
 
 #[test]
-fn every_shipped_robot_stays_upright_in_place_forwards_and_backwards() {
+fn every_shipped_robot_walks_forwards_backwards_and_in_place() {
     for name in RobotFile::shipped_names() {
         let d = RobotFile::shipped(name).expect("robot").description;
-        for fraction in [0.0, 1.0, -1.0] {
-            assert!(
-                stays_upright(&d, fraction, 6.0),
-                "{name} fell at {fraction} of its top command"
-            );
-        }
+        let (upright, forwards) = walk(&d, 1.0, 8.0);
+        assert!(upright && forwards > 0.5, "{name} forwards: {forwards:.2}");
+        let (upright, backwards) = walk(&d, -1.0, 8.0);
+        assert!(
+            upright && backwards < -0.5,
+            "{name} backwards: {backwards:.2}"
+        );
+        let (upright, in_place) = walk(&d, 0.0, 8.0);
+        assert!(
+            upright && in_place.abs() < 0.1,
+            "{name} in place: {in_place:.2}"
+        );
     }
 }

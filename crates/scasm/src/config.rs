@@ -91,6 +91,25 @@ impl Default for ScasmConfig {
 }
 
 impl ScasmConfig {
+    /// The same memory, pull and start measured in time, for an experiment
+    /// whose times are all `factor` times longer (a larger robot walking the
+    /// same gait more slowly; readings still come at the same rate): `t_start`
+    /// times `factor`, and `gamma` and `beta`, which act once per reading,
+    /// such that `factor` times as many readings forget and pull as much.
+    /// `factor` 1 changes nothing.
+    #[must_use]
+    pub fn time_scaled(self, factor: f64) -> Self {
+        if factor == 1.0 {
+            return self;
+        }
+        Self {
+            gamma: libm::pow(self.gamma, 1.0 / factor),
+            beta: 1.0 - libm::pow(1.0 - self.beta, 1.0 / factor),
+            t_start_s: self.t_start_s * factor,
+            ..self
+        }
+    }
+
     /// Checks every value's range.
     pub fn validate(self) -> Result<ScasmParams, ConfigError> {
         if !(self.gamma > 0.0 && self.gamma <= 1.0) {
@@ -217,5 +236,26 @@ impl ScasmParams {
     /// The values as a plain config.
     pub fn config(&self) -> ScasmConfig {
         self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_scaling_keeps_memory_and_pull_per_second() {
+        let base = ScasmConfig::default();
+        assert_eq!(base.time_scaled(1.0), base);
+        let slow = base.time_scaled(2.0);
+        // Twice as many readings forget and pull as much as before.
+        assert!((slow.gamma * slow.gamma - base.gamma).abs() < 1e-15);
+        assert!(((1.0 - slow.beta) * (1.0 - slow.beta) - (1.0 - base.beta)).abs() < 1e-15);
+        assert_eq!(slow.t_start_s, 2.0 * base.t_start_s);
+        assert_eq!(
+            (slow.sensor_degree, slow.command_scale),
+            (base.sensor_degree, base.command_scale)
+        );
+        assert!(slow.validate().is_ok());
     }
 }

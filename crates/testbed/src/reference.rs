@@ -70,11 +70,12 @@ impl MeasuredModels {
         self.sensor.iter().map(|r| r.std_px).fold(0.0, f64::max)
     }
 
-    /// One line saying how the reference was taken and how tight it is.
-    pub fn describe(&self) -> String {
-        let s = StopwatchConfig::default();
+    /// One line saying how the reference was taken (with `stopwatch`) and how
+    /// tight it is.
+    pub fn describe(&self, stopwatch: &StopwatchConfig) -> String {
+        let s = stopwatch;
         format!(
-            "reference: stopwatch at {} commands, {} timings of {} m each after {} s of walking \
+            "reference: stopwatch at {} commands, {} timings of {:.2} m each after {:.1} s of walking \
              (std <= {:.1} mm/s); {} readings standing at each of {} distances, labelled by the \
              distance actually held (std <= {:.2} px)",
             self.action.len(),

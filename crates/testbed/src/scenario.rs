@@ -277,8 +277,15 @@ impl Scenario {
                         file: value.into(),
                         reason: e.to_string(),
                     })?;
-                self.learner.command_scale = ScasmConfig::default().command_scale
-                    * RobotScale::of(&robot.description).speed();
+                // The paper's experiment at the robot's scale: its commands,
+                // trial length and the learner's time constants scale too.
+                let scale = RobotScale::of(&robot.description);
+                let paper = Self::paper().map_err(|e| bad(e.to_string()))?;
+                self.learner = ScasmConfig {
+                    command_scale: paper.learner.command_scale * scale.speed(),
+                    ..paper.learner.time_scaled(scale.time())
+                };
+                self.duration_s = paper.duration_s * scale.time();
                 self.sim = sim;
                 self.description = robot.description;
                 self.urdf_text = robot.urdf_text;

@@ -5,6 +5,7 @@
 use scasm::{Polynomial, ScasmConfig};
 use serde::{Deserialize, Serialize};
 
+use crate::measure::StopwatchConfig;
 use crate::metrics;
 use crate::reference::{MeasuredModels, Reference};
 use crate::scenario::Scenario;
@@ -312,7 +313,7 @@ impl RunSummary {
             &rows,
             &scenario.learner_name,
             crate::learners::parameters(&scenario.learner_name, scenario),
-            &models.describe(),
+            &models.describe(&StopwatchConfig::scaled(scenario.scale())),
         );
         Self {
             aggregate: Aggregate::of(&rows),
