@@ -162,10 +162,14 @@ pub fn draw<DB: DrawingBackend>(
     let torso = sim.torso().position_m;
     let beacon = sim.config().beacon.xy_m;
     let (w, h) = area.dim_in_pixel();
+    // The robot's size relative to the ERS-7's (its stance height; the world
+    // and the test range scale with it): the view and the grid follow it.
+    let s = sim.config().walk.gait.idle.body_height_m
+        / quadsim::SimConfig::default().walk.gait.idle.body_height_m;
     // Behind, to the left of and above the robot, looking past it at the beacon.
-    let target = [torso[0] + 0.35, torso[1], 0.08];
+    let target = [torso[0] + 0.35 * s, torso[1], 0.08 * s];
     let view = View::new(
-        [torso[0] - 0.55, torso[1] - 0.75, 0.45],
+        [torso[0] - 0.55 * s, torso[1] - 0.75 * s, 0.45 * s],
         target,
         (w, h),
         60.0,
@@ -175,28 +179,35 @@ pub fn draw<DB: DrawingBackend>(
             .map(|s| PathElement::new(s.to_vec(), style))
     };
 
-    // The floor: a grid every 0.2 m around the robot.
+    // The floor: a grid every 0.2 m (at the ERS-7's size) around the robot.
     let grid = RGBColor(210, 210, 205).stroke_width(1);
+    let cell = 0.2 * s;
     let (gx, gy) = (
-        (torso[0] / 0.2).round() * 0.2,
-        (torso[1] / 0.2).round() * 0.2,
+        (torso[0] / cell).round() * cell,
+        (torso[1] / cell).round() * cell,
     );
+    let (half, ahead) = (8.0 * cell, 16.0 * cell);
     for k in -8..=16 {
-        let x = gx + 0.2 * f64::from(k);
-        area.draw(&line([x, gy - 1.6, 0.0], [x, gy + 1.6, 0.0], grid).unwrap_or_else(empty))?;
+        let x = gx + cell * f64::from(k);
+        area.draw(&line([x, gy - half, 0.0], [x, gy + half, 0.0], grid).unwrap_or_else(empty))?;
     }
     for k in -8..=8 {
-        let y = gy + 0.2 * f64::from(k);
-        area.draw(&line([gx - 1.6, y, 0.0], [gx + 3.2, y, 0.0], grid).unwrap_or_else(empty))?;
+        let y = gy + cell * f64::from(k);
+        area.draw(&line([gx - half, y, 0.0], [gx + ahead, y, 0.0], grid).unwrap_or_else(empty))?;
     }
     // The line of approach and the ends of the test range.
     let approach = RGBColor(120, 160, 220).stroke_width(2);
     let (bx, by) = (beacon[0], beacon[1]);
-    area.draw(&line([bx - 4.0, by, 0.001], [bx, by, 0.001], approach).unwrap_or_else(empty))?;
-    for d in [1.2, 3.6] {
+    area.draw(&line([bx - 4.0 * s, by, 0.001], [bx, by, 0.001], approach).unwrap_or_else(empty))?;
+    for d in [1.2 * s, 3.6 * s] {
         let x = bx - d;
         area.draw(
-            &line([x, by - 0.15, 0.001], [x, by + 0.15, 0.001], approach).unwrap_or_else(empty),
+            &line(
+                [x, by - 0.15 * s, 0.001],
+                [x, by + 0.15 * s, 0.001],
+                approach,
+            )
+            .unwrap_or_else(empty),
         )?;
     }
 
