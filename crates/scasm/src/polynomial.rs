@@ -65,6 +65,22 @@ impl Polynomial {
         self.coeffs().iter().rev().fold(0.0, |acc, &c| acc * x + c)
     }
 
+    /// `p'(x)` (the zero polynomial for a constant).
+    pub fn derivative(&self) -> Self {
+        let c = self.coeffs();
+        if c.len() == 1 {
+            return Self::constant(0.0);
+        }
+        let mut d = [0.0; MAX_COEFFS];
+        for (k, dk) in d.iter_mut().enumerate().take(c.len() - 1) {
+            *dk = (k + 1) as f64 * c[k + 1];
+        }
+        Self {
+            coeffs: d,
+            len: self.len - 1,
+        }
+    }
+
     /// Whether every coefficient is finite.
     pub fn is_finite(&self) -> bool {
         self.coeffs().iter().all(|c| c.is_finite())
@@ -103,6 +119,14 @@ impl Polynomial {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_derivative_of_a_cubic_and_of_a_constant() {
+        let p = Polynomial::new(&[1.0, -2.0, 0.5, 3.0]).expect("cubic");
+        let d = p.derivative();
+        assert_eq!(d.coeffs(), &[-2.0, 1.0, 9.0]);
+        assert_eq!(Polynomial::constant(4.0).derivative().coeffs(), &[0.0]);
+    }
 
     #[test]
     fn horner_matches_powers() {

@@ -12,6 +12,7 @@ pub mod dataset;
 pub mod demos;
 pub mod experiment;
 pub mod learners;
+pub mod localiser;
 pub mod measure;
 pub mod metrics;
 pub mod output;

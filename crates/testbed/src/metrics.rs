@@ -102,6 +102,16 @@ pub fn best_polynomial(points: &[(f64, f64)], degree: usize) -> Option<Polynomia
     Polynomial::from_normalised(q.as_slice(), centre, half)
 }
 
+/// Location error of `(estimate, true distance mm)` pairs: the RMSE after the
+/// best affine map from the estimate's units to mm (the sensor metric's
+/// gauge), or `None` with fewer than three pairs.
+pub fn location_rmse(pairs: &[(f64, f64)]) -> Option<f64> {
+    if pairs.len() < 3 {
+        return None;
+    }
+    best_polynomial_rmse(pairs, 1)
+}
+
 /// RMSE of the best `degree` polynomial through `(x, y)` points.
 pub fn best_polynomial_rmse(points: &[(f64, f64)], degree: usize) -> Option<f64> {
     let p = best_polynomial(points, degree)?;

@@ -131,21 +131,27 @@ fn cell(v: Option<f64>) -> String {
     v.map(|x| x.to_string()).unwrap_or_default()
 }
 
-/// A trace, one row per camera frame: `t,command,obs,x_true_mm,x_a,x_s` (empty
-/// cells where there was no reading or no model).
+/// A trace, one row per camera frame:
+/// `t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm` (empty
+/// cells where there was no reading or no model; `x_loc` is the localiser's
+/// estimate with the learned models, in their units, `x_loc_true_mm` with the
+/// measured ones).
 pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
     write_csv(
         path,
-        "t,command,obs,x_true_mm,x_a,x_s",
+        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm",
         trace.iter().map(|r| {
             format!(
-                "{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{}",
                 r.t_s,
                 r.command,
                 cell(r.obs_px),
                 r.x_true_mm,
                 cell(r.x_a),
-                cell(r.x_s)
+                cell(r.x_s),
+                cell(r.x_loc),
+                cell(r.x_loc_std),
+                cell(r.x_loc_true_mm)
             )
         }),
     )

@@ -28,6 +28,33 @@ pub struct Figures {
     pub consistency: f64,
     /// Simulated seconds per wall-clock second.
     pub realtime_factor: f64,
+    /// The localiser with the learned models: location RMSE over the last 60 s
+    /// after the best affine map to mm, mm.
+    pub localisation_rmse_mm: f64,
+    /// The same over the whole trial (from the first estimate), mm.
+    pub localisation_whole_rmse_mm: f64,
+    /// The localiser with the measured (true) models, last 60 s, mm.
+    pub localisation_true_models_rmse_mm: f64,
+    /// The learner's raw `x_s` alone, last 60 s, mm.
+    pub x_s_rmse_mm: f64,
+    /// The learner's raw `x_a` alone, last 60 s, mm.
+    pub x_a_rmse_mm: f64,
+}
+
+/// The window over which locations are judged: the last 60 s of a trial.
+pub const LOCATION_WINDOW_S: f64 = 60.0;
+
+/// Location RMSE of `estimate` over `rows` after the best affine map to the
+/// true distance (NaN if fewer than three rows have an estimate).
+fn location_rmse(
+    rows: &[crate::trial::TraceRow],
+    estimate: fn(&crate::trial::TraceRow) -> Option<f64>,
+) -> f64 {
+    let pairs: Vec<(f64, f64)> = rows
+        .iter()
+        .filter_map(|r| estimate(r).map(|e| (e, r.x_true_mm)))
+        .collect();
+    metrics::location_rmse(&pairs).unwrap_or(f64::NAN)
 }
 
 /// The best possible figures for a reference (independent of the trial).
@@ -51,6 +78,22 @@ impl Figures {
             action_a0_rmse_mm_s: best.2,
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
+            ..Self::localisation_of(outcome)
+        }
+    }
+
+    /// The location figures of a trial (the rest NaN).
+    fn localisation_of(outcome: &TrialOutcome) -> Self {
+        let trace = &outcome.trace;
+        let end = trace.last().map_or(0.0, |r| r.t_s);
+        let last = &trace[trace.partition_point(|r| r.t_s < end - LOCATION_WINDOW_S)..];
+        Self {
+            localisation_rmse_mm: location_rmse(last, |r| r.x_loc),
+            localisation_whole_rmse_mm: location_rmse(trace, |r| r.x_loc),
+            localisation_true_models_rmse_mm: location_rmse(last, |r| r.x_loc_true_mm),
+            x_s_rmse_mm: location_rmse(last, |r| r.x_s),
+            x_a_rmse_mm: location_rmse(last, |r| r.x_a),
+            ..Self::filled(f64::NAN)
         }
     }
 
@@ -64,6 +107,11 @@ impl Figures {
             action_a0_rmse_mm_s: field(|x| x.action_a0_rmse_mm_s),
             consistency: field(|x| x.consistency),
             realtime_factor: field(|x| x.realtime_factor),
+            localisation_rmse_mm: field(|x| x.localisation_rmse_mm),
+            localisation_whole_rmse_mm: field(|x| x.localisation_whole_rmse_mm),
+            localisation_true_models_rmse_mm: field(|x| x.localisation_true_models_rmse_mm),
+            x_s_rmse_mm: field(|x| x.x_s_rmse_mm),
+            x_a_rmse_mm: field(|x| x.x_a_rmse_mm),
         }
     }
 
@@ -77,6 +125,11 @@ impl Figures {
             action_a0_rmse_mm_s: value,
             consistency: value,
             realtime_factor: value,
+            localisation_rmse_mm: value,
+            localisation_whole_rmse_mm: value,
+            localisation_true_models_rmse_mm: value,
+            x_s_rmse_mm: value,
+            x_a_rmse_mm: value,
         }
     }
 
@@ -102,7 +155,7 @@ impl Figures {
             sensor_best_rmse_mm: 48.8,
             action_a0_rmse_mm_s: 43.0,
             consistency: 0.08,
-            realtime_factor: f64::NAN,
+            ..Self::filled(f64::NAN)
         }
     }
 }

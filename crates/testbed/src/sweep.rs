@@ -344,6 +344,7 @@ impl Results {
                 action_a0_rmse_mm_s: m[4],
                 consistency: m[5],
                 realtime_factor: m[6],
+                ..Figures::filled(f64::NAN)
             };
             results.insert(Row {
                 run: Run { settings, seed },

@@ -11,6 +11,7 @@ use rand::Rng;
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
 use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
+use crate::localiser::{Learned, Localiser, LocaliserConfig, Tabulated};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
 
@@ -270,6 +271,13 @@ pub struct TraceRow {
     pub x_a: Option<f64>,
     /// The learner's location from the sensor model.
     pub x_s: Option<f64>,
+    /// The localiser's estimate with the learner's current models, in their
+    /// units (see [`crate::localiser`]).
+    pub x_loc: Option<f64>,
+    /// Its standard deviation.
+    pub x_loc_std: Option<f64>,
+    /// The localiser's estimate with the measured (true) models, mm.
+    pub x_loc_true_mm: Option<f64>,
 }
 
 impl TraceRow {
@@ -282,6 +290,9 @@ impl TraceRow {
             x_true_mm: frame.truth.x_mm,
             x_a: learner.x_a(),
             x_s: learner.x_s(),
+            x_loc: None,
+            x_loc_std: None,
+            x_loc_true_mm: None,
         }
     }
 }
@@ -320,13 +331,31 @@ pub fn learn(
     let judge_every = (judge_every_s / frame_s).round().max(1.0) as usize;
     let mut trace = Vec::with_capacity(frames.len());
     let mut over_time = Vec::new();
+    // Two localisers ride along: one with the learner's models as they are at
+    // each frame, one with the measured models (the bound).
+    let config = LocaliserConfig {
+        top_command: frames.iter().map(|f| f.command.abs()).fold(0.0, f64::max),
+        ..LocaliserConfig::default()
+    };
+    let (mut with_learned, mut with_true) = (Localiser::new(config), Localiser::new(config));
+    let true_models = Tabulated::new(&reference.action, &reference.sensor);
     for (k, f) in frames.iter().enumerate() {
         feed(learner, f)?;
         let t_s = f.end_s();
         if (k + 1) % judge_every == 0 {
             over_time.push(reference.judge(t_s, learner));
         }
-        trace.push(TraceRow::of(f, learner));
+        let mut row = TraceRow::of(f, learner);
+        if let (Some(action), Some(sensor)) = (learner.action_model(), learner.sensor_model()) {
+            let models = Learned { action, sensor };
+            if let Some(b) = with_learned.step(&models, f.command, f.dt_s, f.obs_px) {
+                (row.x_loc, row.x_loc_std) = (Some(b.x), Some(b.std));
+            }
+        }
+        row.x_loc_true_mm = with_true
+            .step(&true_models, f.command, f.dt_s, f.obs_px)
+            .map(|b| b.x);
+        trace.push(row);
     }
     let end_s = frames.last().map_or(0.0, FrameRecord::end_s);
     Ok(TrialOutcome {
