@@ -118,6 +118,7 @@ fn main() -> Result<()> {
     let (header, table) = report::table::results_table(aggregate, models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
+    println!("\n{}", aggregate.describe_localisation());
     println!(
         "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads; results in {}",
         rows.len(),

@@ -146,6 +146,7 @@ fn main() -> Result<()> {
         "{}",
         models.describe(&StopwatchConfig::scaled(scenario.scale()))
     );
+    println!("\n{}", aggregate.describe_localisation());
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;

@@ -138,7 +138,7 @@ fn learn(
         frames,
         realtime_factor: f64::NAN,
     };
-    let outcome = trial::learn(&recording, &mut learner, reference, MAX_DEMO_S)?;
+    let outcome = trial::learn(&recording, &mut learner, None, reference, MAX_DEMO_S)?;
     Ok(DemoRun {
         trace: outcome.trace,
         action: learner.action_model(),

@@ -100,9 +100,21 @@ pub fn learn(
     let reference = models.reference();
     let mut learner =
         learners::build(name, scenario, &reference).map_err(TrialError::LearnerSetup)?;
+    // The localisation baseline: S learned from the identity action model A0
+    // (the paper's section IV), with the scenario's learner settings.
+    let params = scenario
+        .learner
+        .validate()
+        .map_err(|e| TrialError::LearnerSetup(e.to_string()))?;
+    let mut a0_baseline = scasm::Scasm::new(
+        params,
+        scasm::Mode::SensorFromAction(scasm::Polynomial::identity()),
+    )
+    .map_err(|e| TrialError::LearnerSetup(e.to_string()))?;
     Ok(trial::learn(
         recording,
         learner.as_mut(),
+        Some(&mut a0_baseline),
         &reference,
         JUDGE_EVERY_S,
     )?)

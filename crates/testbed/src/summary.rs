@@ -35,6 +35,9 @@ pub struct Figures {
     pub localisation_whole_rmse_mm: f64,
     /// The localiser with the measured (true) models, last 60 s, mm.
     pub localisation_true_models_rmse_mm: f64,
+    /// The localiser with A0 and the sensor model learned from it (section
+    /// IV), last 60 s, mm.
+    pub localisation_a0_rmse_mm: f64,
     /// The learner's raw `x_s` alone, last 60 s, mm.
     pub x_s_rmse_mm: f64,
     /// The learner's raw `x_a` alone, last 60 s, mm.
@@ -91,6 +94,7 @@ impl Figures {
             localisation_rmse_mm: location_rmse(last, |r| r.x_loc),
             localisation_whole_rmse_mm: location_rmse(trace, |r| r.x_loc),
             localisation_true_models_rmse_mm: location_rmse(last, |r| r.x_loc_true_mm),
+            localisation_a0_rmse_mm: location_rmse(last, |r| r.x_loc_a0),
             x_s_rmse_mm: location_rmse(last, |r| r.x_s),
             x_a_rmse_mm: location_rmse(last, |r| r.x_a),
             ..Self::filled(f64::NAN)
@@ -110,6 +114,7 @@ impl Figures {
             localisation_rmse_mm: field(|x| x.localisation_rmse_mm),
             localisation_whole_rmse_mm: field(|x| x.localisation_whole_rmse_mm),
             localisation_true_models_rmse_mm: field(|x| x.localisation_true_models_rmse_mm),
+            localisation_a0_rmse_mm: field(|x| x.localisation_a0_rmse_mm),
             x_s_rmse_mm: field(|x| x.x_s_rmse_mm),
             x_a_rmse_mm: field(|x| x.x_a_rmse_mm),
         }
@@ -128,6 +133,7 @@ impl Figures {
             localisation_rmse_mm: value,
             localisation_whole_rmse_mm: value,
             localisation_true_models_rmse_mm: value,
+            localisation_a0_rmse_mm: value,
             x_s_rmse_mm: value,
             x_a_rmse_mm: value,
         }
@@ -258,6 +264,51 @@ impl Aggregate {
                 .map(|t| (t.0, t.1.clone()))
                 .collect(),
         }
+    }
+
+    /// The localisers' figures as a small table: location RMSE over the last
+    /// 60 s, after the best affine map to mm, mean +- std over the ok trials.
+    pub fn describe_localisation(&self) -> String {
+        let (m, s) = (&self.mean, &self.std);
+        let rows = [
+            (
+                "filter, learned models",
+                m.localisation_rmse_mm,
+                s.localisation_rmse_mm,
+            ),
+            (
+                "filter, measured (true) models",
+                m.localisation_true_models_rmse_mm,
+                s.localisation_true_models_rmse_mm,
+            ),
+            (
+                "filter, A0 and its section IV sensor model",
+                m.localisation_a0_rmse_mm,
+                s.localisation_a0_rmse_mm,
+            ),
+            (
+                "raw x_s (learned S of each reading)",
+                m.x_s_rmse_mm,
+                s.x_s_rmse_mm,
+            ),
+            (
+                "raw x_a (the learner's dead reckoning)",
+                m.x_a_rmse_mm,
+                s.x_a_rmse_mm,
+            ),
+        ];
+        let mut out = String::from(
+            "location RMSE, last 60 s (mm, after the best affine map):
+",
+        );
+        for (name, mean, std) in rows {
+            out.push_str(&format!("  {name:<44} {mean:7.1} +- {std:.1}\n"));
+        }
+        out.push_str(&format!(
+            "  (the learned-model filter over the whole trial: {:.1} +- {:.1})",
+            m.localisation_whole_rmse_mm, s.localisation_whole_rmse_mm
+        ));
+        out
     }
 
     /// Trials that ended `Ok`.

@@ -278,6 +278,9 @@ pub struct TraceRow {
     pub x_loc_std: Option<f64>,
     /// The localiser's estimate with the measured (true) models, mm.
     pub x_loc_true_mm: Option<f64>,
+    /// The localiser's estimate with the identity action model A0 and the
+    /// sensor model learned from it (section IV), in A0's units.
+    pub x_loc_a0: Option<f64>,
 }
 
 impl TraceRow {
@@ -293,6 +296,7 @@ impl TraceRow {
             x_loc: None,
             x_loc_std: None,
             x_loc_true_mm: None,
+            x_loc_a0: None,
         }
     }
 }
@@ -319,10 +323,14 @@ pub struct TrialOutcome {
 }
 
 /// Runs `learner` over a recorded trial (no physics): feeds it every frame,
-/// judges its models every `judge_every_s` and at the end.
+/// judges its models every `judge_every_s` and at the end. Localisers ride
+/// along (see [`TraceRow`]): with the learner's models, with the measured
+/// ones, and, if `a0_baseline` is given (a learner of S from the identity
+/// action model, fed the same frames), with A0 and its S.
 pub fn learn(
     recording: &Recording,
     learner: &mut dyn CalibrationLearner,
+    mut a0_baseline: Option<&mut dyn CalibrationLearner>,
     reference: &Reference,
     judge_every_s: f64,
 ) -> Result<TrialOutcome, EventError> {
@@ -337,7 +345,11 @@ pub fn learn(
         top_command: frames.iter().map(|f| f.command.abs()).fold(0.0, f64::max),
         ..LocaliserConfig::default()
     };
-    let (mut with_learned, mut with_true) = (Localiser::new(config), Localiser::new(config));
+    let (mut with_learned, mut with_true, mut with_a0) = (
+        Localiser::new(config),
+        Localiser::new(config),
+        Localiser::new(config),
+    );
     let true_models = Tabulated::new(&reference.action, &reference.sensor);
     for (k, f) in frames.iter().enumerate() {
         feed(learner, f)?;
@@ -355,6 +367,18 @@ pub fn learn(
         row.x_loc_true_mm = with_true
             .step(&true_models, f.command, f.dt_s, f.obs_px)
             .map(|b| b.x);
+        if let Some(baseline) = a0_baseline.as_deref_mut() {
+            feed(baseline, f)?;
+            if let Some(sensor) = baseline.sensor_model() {
+                let models = Learned {
+                    action: Polynomial::identity(),
+                    sensor,
+                };
+                row.x_loc_a0 = with_a0
+                    .step(&models, f.command, f.dt_s, f.obs_px)
+                    .map(|b| b.x);
+            }
+        }
         trace.push(row);
     }
     let end_s = frames.last().map_or(0.0, FrameRecord::end_s);
@@ -379,5 +403,11 @@ pub fn run_trial(
     reference: &Reference,
 ) -> Result<TrialOutcome, TrialError> {
     let recording = record(description, sim_config, config)?;
-    Ok(learn(&recording, learner, reference, config.judge_every_s)?)
+    Ok(learn(
+        &recording,
+        learner,
+        None,
+        reference,
+        config.judge_every_s,
+    )?)
 }
