@@ -29,6 +29,7 @@ fn config(seed: u64, duration_s: f64) -> TrialConfig {
         seed,
         behaviour: experiment::behaviour_for(&setup().0, &setup().1),
         judge_every_s: 5.0,
+        blank: Default::default(),
     }
 }
 
@@ -231,4 +232,68 @@ fn unknown_or_out_of_range_settings_are_named() {
     assert_eq!(s.learner.gamma, 0.999);
     s.set("learner.beta=0.05").expect("valid");
     assert_eq!(s.learner.beta, 0.05);
+}
+
+#[test]
+fn blanked_readings_leave_the_localiser_to_dead_reckoning_until_they_return() {
+    let (scenario, models) = setup();
+    let reference = models.reference();
+    let run = |blank: trial::Blanks| {
+        let mut learner = Scasm::default();
+        trial::run_trial(
+            &scenario.description,
+            scenario.sim,
+            TrialConfig {
+                blank,
+                ..config(1, 80.0)
+            },
+            &mut learner,
+            &reference,
+        )
+        .expect("trial")
+    };
+    // Blind while mid-range, for 2 s: the world is the same up to the blank,
+    // so an unblanked run says when the robot is mid-range. (Blind near an end,
+    // the behaviour cannot see where to turn and walks out of the range.)
+    let clear = run(trial::Blanks::default());
+    let start = clear
+        .trace
+        .iter()
+        .find(|r| r.t_s >= 30.0 && (2000.0..2800.0).contains(&r.x_true_mm))
+        .expect("mid-range after 30 s")
+        .t_s;
+    let end = start + 2.0;
+    let out = run(trial::Blanks::parse(&format!("{start}..{end}"), 80.0).expect("interval"));
+    let row = |t: f64| {
+        out.trace
+            .iter()
+            .find(|r| r.t_s >= t - 1e-6)
+            .expect("a frame ends then")
+    };
+    assert!(
+        out.trace
+            .iter()
+            .filter(|r| r.t_s > start + 1e-6 && r.t_s < end - 1e-6)
+            .all(|r| r.obs_px.is_none()),
+        "a reading in the blank"
+    );
+    let std = |t| row(t).x_loc_std.expect("the localiser has a belief");
+    // Blind, the uncertainty only grows (from the action model alone); once
+    // readings return, it comes down.
+    let blind: Vec<f64> = out
+        .trace
+        .iter()
+        .filter(|r| r.t_s > start + 1e-6 && r.t_s < end - 1e-6)
+        .filter_map(|r| r.x_loc_std)
+        .collect();
+    assert!(blind.len() >= 30, "{} blind frames", blind.len());
+    assert!(
+        blind.windows(2).all(|w| w[1] > w[0]),
+        "std fell while blind: {blind:?}"
+    );
+    let (before, end_of_blank, after) = (std(start), std(end - 0.05), std(end + 3.0));
+    assert!(
+        end_of_blank > before && after < 0.8 * end_of_blank,
+        "std {before:.1} at the blank's start, {end_of_blank:.1} at its end, {after:.1} 3 s later"
+    );
 }

@@ -148,3 +148,44 @@ fn an_unknown_robot_is_named_and_changes_nothing() {
     assert!(err.to_string().contains("no_such_robot"), "{err}");
     assert_eq!(s.reference_key(), before);
 }
+
+#[test]
+fn blanked_intervals_are_checked_against_the_trial() {
+    let set = |settings: &[&str]| {
+        let settings: Vec<String> = settings.iter().map(|s| s.to_string()).collect();
+        Scenario::from_settings(None, None, &settings)
+    };
+    // The trial's length applies first, wherever it is given.
+    let s = set(&["camera.blank_s=300..310,400..420", "trial.duration=600"]).expect("valid");
+    assert_eq!(s.blank.intervals(), &[(300.0, 310.0), (400.0, 420.0)]);
+    for (bad, needle) in [
+        ("camera.blank_s=100..90", "100..90"),
+        ("camera.blank_s=100-110", "100-110"),
+        ("camera.blank_s=140..160", "140..160"),
+        ("camera.blank_s=10..20,15..30", "15..30"),
+    ] {
+        let err = set(&[bad]).expect_err(bad).to_string();
+        assert!(
+            err.contains(needle) && err.contains("camera.blank_s"),
+            "{err}"
+        );
+    }
+    let err = set(&["camera.blank_s=100..140", "trial.duration=120"])
+        .expect_err("blank past the trial")
+        .to_string();
+    assert!(
+        err.contains("camera.blank_s") && err.contains("120"),
+        "{err}"
+    );
+    // Shortening the trial later is refused too, and changes nothing.
+    let mut s = set(&["camera.blank_s=100..140"]).expect("within 150 s");
+    let err = s
+        .set("trial.duration=120")
+        .expect_err("cuts the blank")
+        .to_string();
+    assert!(
+        err.contains("trial.duration") && err.contains("140"),
+        "{err}"
+    );
+    assert_eq!(s.duration_s, 150.0);
+}

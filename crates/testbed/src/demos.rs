@@ -63,6 +63,7 @@ pub fn run_demos(
         seed,
         behaviour,
         judge_every_s: MAX_DEMO_S,
+        blank: Default::default(),
     };
 
     let far_m = models.sensor.last().map_or(3.6, |s| s.distance_mm / 1000.0);

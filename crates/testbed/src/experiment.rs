@@ -73,6 +73,7 @@ pub fn trial_config(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> 
         seed,
         behaviour: behaviour_for(scenario, models),
         judge_every_s: JUDGE_EVERY_S,
+        blank: scenario.blank,
     }
 }
 
@@ -170,9 +171,10 @@ pub struct Job<'a> {
 /// Jobs with the same key can share one recording, whatever their learners.
 pub fn world_key(scenario: &Scenario, seed: u64) -> String {
     format!(
-        "{}/{}/{seed}",
+        "{}/{}/{}/{seed}",
         scenario.reference_key(),
-        scenario.duration_s
+        scenario.duration_s,
+        scenario.blank.to_text()
     )
 }
 

@@ -77,6 +77,8 @@ pub struct Scenario {
     pub duration_s: f64,
     /// The seeds of a run's trials, `first..end` (end excluded).
     pub seeds: (u64, u64),
+    /// When the camera sees no beacon.
+    pub blank: crate::trial::Blanks,
 }
 
 /// The longest trial, s (a day): a trial keeps every frame in memory, about
@@ -93,7 +95,7 @@ enum Kind {
 
 /// Every setting: its key and type. `--set`, scenario files and a run's
 /// `config.toml` all use these.
-const SETTINGS: [(&str, Kind); 27] = [
+const SETTINGS: [(&str, Kind); 28] = [
     ("robot.file", Kind::Text),
     ("robot.urdf", Kind::Text),
     ("trial.duration", Kind::Number),
@@ -113,6 +115,7 @@ const SETTINGS: [(&str, Kind); 27] = [
     ("camera.hfov_deg", Kind::Number),
     ("camera.vfov_deg", Kind::Number),
     ("camera.frame_period_s", Kind::Number),
+    ("camera.blank_s", Kind::Text),
     ("world.friction", Kind::Number),
     ("world.start_distance_m", Kind::Number),
     ("servo.torque_scale", Kind::Number),
@@ -145,6 +148,7 @@ impl Scenario {
             mode: LearningMode::Simultaneous,
             duration_s: 150.0,
             seeds: (0, 15),
+            blank: Default::default(),
         })
     }
 
@@ -180,10 +184,11 @@ impl Scenario {
             })?;
             scenario.apply_toml(&path.display().to_string(), &text)?;
         }
-        let (robot, rest): (Vec<&String>, Vec<&String>) = settings
-            .iter()
-            .partition(|s| s.trim_start().starts_with("robot."));
-        for s in robot.into_iter().chain(rest) {
+        // The robot first, then the trial (a blanked interval is checked
+        // against the trial's length), then the rest, each in the order given.
+        let mut ordered: Vec<&String> = settings.iter().collect();
+        ordered.sort_by_key(|s| section_rank(s.trim_start().split('.').next().unwrap_or("")));
+        for s in ordered {
             scenario.set(s)?;
         }
         Ok(scenario)
@@ -200,12 +205,11 @@ impl Scenario {
             .parse()
             .map_err(|e: toml::de::Error| file_error(e.to_string()))?;
         let mut changed = self.clone();
-        // The robot first: it resets the world to its scale.
-        let robot_first = table
-            .iter()
-            .filter(|(section, _)| *section == "robot")
-            .chain(table.iter().filter(|(section, _)| *section != "robot"));
-        for (section, entries) in robot_first {
+        // The robot first (it resets the world to its scale), then the trial
+        // (a blanked interval is checked against its length), then the rest.
+        let mut ordered: Vec<(&String, &toml::Value)> = table.iter().collect();
+        ordered.sort_by_key(|(section, _)| section_rank(section));
+        for (section, entries) in ordered {
             let toml::Value::Table(entries) = entries else {
                 return Err(file_error(format!(
                     "`{section}` must be a [section] of settings"
@@ -314,6 +318,13 @@ impl Scenario {
                          frame in memory"
                     )));
                 }
+                if let Some(&(_, end)) = self.blank.intervals().last() {
+                    if end > d {
+                        return Err(bad(format!(
+                            "{d} s ends before camera.blank_s's interval ending at {end} s"
+                        )));
+                    }
+                }
                 self.duration_s = d;
             }
             "trial.seeds" => self.seeds = parse_seeds(value).map_err(bad)?,
@@ -351,6 +362,9 @@ impl Scenario {
             "camera.hfov_deg" => self.sim.camera.intrinsics.hfov_deg = number()?,
             "camera.vfov_deg" => self.sim.camera.intrinsics.vfov_deg = number()?,
             "camera.frame_period_s" => self.sim.camera.frame_period_s = number()?,
+            "camera.blank_s" => {
+                self.blank = crate::trial::Blanks::parse(value, self.duration_s).map_err(bad)?;
+            }
             "world.start_distance_m" => self.sim.start_distance_m = number()?,
             "world.friction" => self.sim.friction = number()?,
             "servo.torque_scale" => self.sim.servo.torque_scale = number()?,
@@ -411,6 +425,7 @@ impl Scenario {
             "camera.hfov_deg" => Float(self.sim.camera.intrinsics.hfov_deg),
             "camera.vfov_deg" => Float(self.sim.camera.intrinsics.vfov_deg),
             "camera.frame_period_s" => Float(self.sim.camera.frame_period_s),
+            "camera.blank_s" => Text(self.blank.to_text()),
             "world.start_distance_m" => Float(self.sim.start_distance_m),
             "world.friction" => Float(self.sim.friction),
             "servo.torque_scale" => Float(self.sim.servo.torque_scale),
@@ -465,6 +480,18 @@ impl Scenario {
     /// controllers, camera and the protocols; not the learner).
     pub fn reference_key(&self) -> String {
         crate::reference::key(self)
+    }
+}
+
+/// The order settings are applied in, by section: the robot first (it resets
+/// the world to its scale), then the trial (a blanked interval is checked
+/// against its length), then the rest; a stable sort keeps the given order
+/// within each.
+fn section_rank(section: &str) -> u8 {
+    match section {
+        "robot" => 0,
+        "trial" => 1,
+        _ => 2,
     }
 }
 
