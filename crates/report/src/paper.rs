@@ -1,5 +1,6 @@
 //! The paper's figures 2a, 2b, 3, 6, 7a, 7b and 8, drawn from a training run's
-//! own data: its demonstrations, its trials and the measured models.
+//! own data: its demonstrations, its trials and the measured models; and,
+//! beyond the paper, the localiser's estimates over the typical trial.
 
 use std::path::Path;
 
@@ -60,6 +61,7 @@ pub fn figures(data: &RunData) -> Vec<Figure> {
         typical.and_then(|t| fig7a(t, data.measured)),
         typical.and_then(|t| fig7b(t, data.measured)),
         Some(fig8(data.trials, data.best, data.degrees)),
+        typical.and_then(localisation),
     ]
     .into_iter()
     .flatten()
@@ -233,6 +235,70 @@ fn fig6(trial: &TrialOutcome) -> Figure {
             legend: SeriesLabelPosition::LowerRight,
         },
     }
+}
+
+/// `(t, estimate)` pairs mapped to mm by the best affine map onto the true
+/// distance over the whole trial (the location metric's gauge), with the map's
+/// slope.
+fn in_mm(
+    trace: &[TraceRow],
+    estimate: impl Fn(&TraceRow) -> Option<f64>,
+) -> Option<(Vec<(f64, f64)>, f64)> {
+    let pairs: Vec<(f64, f64)> = trace
+        .iter()
+        .filter_map(|r| estimate(r).map(|e| (e, r.x_true_mm)))
+        .collect();
+    let map = metrics::best_polynomial(&pairs, 1)?;
+    let points = trace
+        .iter()
+        .filter_map(|r| estimate(r).map(|e| (r.t_s, map.eval(e))))
+        .collect();
+    Some((points, map.coeffs()[1]))
+}
+
+fn localisation(trial: &TrialOutcome) -> Option<Figure> {
+    let trace = &trial.trace;
+    let (filtered, slope) = in_mm(trace, |r| r.x_loc)?;
+    let band: Vec<f64> = trace
+        .iter()
+        .filter(|r| r.x_loc.is_some())
+        .map(|r| 2.0 * r.x_loc_std.unwrap_or(0.0) * slope.abs())
+        .collect();
+    let lower: Vec<(f64, f64)> = filtered
+        .iter()
+        .zip(&band)
+        .map(|(&(t, x), b)| (t, x - b))
+        .collect();
+    let upper: Vec<f64> = filtered
+        .iter()
+        .zip(&band)
+        .map(|(&(_, x), b)| x + b)
+        .collect();
+    let (raw, _) = in_mm(trace, |r| r.obs_px.and(r.x_s))?;
+    let truth = trace.iter().map(|r| (r.t_s, r.x_true_mm)).collect();
+    Some(Figure {
+        stem: "localisation",
+        chart: Chart {
+            title: format!(
+                "Localisation with the learned models (seed {}), in mm after the best affine map",
+                trial.seed
+            ),
+            x_label: "time (s)".into(),
+            y_label: "distance to the beacon (mm)".into(),
+            series: vec![
+                Series::new("filter +- 2 std", Mark::Band(upper), colours::BLUE, lower),
+                Series::new("raw x_s = S(obs)", Mark::Plus, colours::GREY, raw),
+                Series::new("true distance", Mark::Line, colours::BLACK, truth),
+                Series::new(
+                    "filter (learned A and S)",
+                    Mark::Line,
+                    colours::BLUE,
+                    filtered,
+                ),
+            ],
+            legend: SeriesLabelPosition::UpperRight,
+        },
+    })
 }
 
 fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
@@ -412,6 +478,9 @@ pub fn caption(stem: &str) -> &'static str {
         }
         "fig7b" => {
             "Fig. 7b. Measured distance per reading (stand-and-read protocol) and the typical trial's learned sensor model after its best affine map."
+        }
+        "localisation" => {
+            "Localisation (beyond the paper): over the typical trial, the true distance, the localiser's estimate with the learner's models as they were at each moment (with +- 2 std), and the raw x_s of each reading, each mapped to mm by its best affine map."
         }
         "fig8" => {
             "Fig. 8. Errors of the learned models every 5 s, mean and std over the trials, with the best possible polynomial of each model's degree (dashed)."
