@@ -145,7 +145,7 @@ fn s_from_a0_has_the_right_shape_and_a_from_the_rough_s_tracks_it() {
 }
 
 #[test]
-fn a_run_writes_all_seven_figures_and_its_page() {
+fn a_run_writes_the_papers_seven_figures_the_localisation_and_its_page() {
     let (scenario, models, demos) = setup();
     let mut scenario = scenario.clone();
     scenario.duration_s = 50.0;
@@ -167,7 +167,16 @@ fn a_run_writes_all_seven_figures_and_its_page() {
     let stems: Vec<&str> = figures.iter().map(|f| f.stem).collect();
     assert_eq!(
         stems,
-        ["fig2a", "fig2b", "fig3", "fig6", "fig7a", "fig7b", "fig8"]
+        [
+            "fig2a",
+            "fig2b",
+            "fig3",
+            "fig6",
+            "fig7a",
+            "fig7b",
+            "fig8",
+            "localisation"
+        ]
     );
     for f in &figures {
         assert!(
