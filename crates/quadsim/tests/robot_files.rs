@@ -118,6 +118,39 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
     assert!(RobotFile::load("no-such-robot").is_err());
 }
 
+#[test]
+fn a_massless_urdf_names_the_file_and_the_link() {
+    let dir = std::env::temp_dir().join(format!("quadsim-massless-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let massless = with_zero_masses(ERS7_URDF);
+    write(&dir, "robot.urdf", &massless);
+    let local = ERS7_FILE.replace("../ers7.urdf", "robot.urdf");
+    let path = write(&dir, "robot.toml", &local);
+    let msg = RobotFile::from_file(&path)
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        msg.contains("robot.toml") && msg.contains("robot.urdf") && msg.contains("torso"),
+        "{msg}"
+    );
+    assert!(msg.contains("mass"), "{msg}");
+}
+
+/// Every `<mass value="..."/>` set to zero.
+fn with_zero_masses(urdf: &str) -> String {
+    urdf.split("<mass value=\"")
+        .enumerate()
+        .map(|(i, part)| {
+            if i == 0 {
+                part.to_string()
+            } else {
+                let rest = part.split_once('"').map_or("", |(_, r)| r);
+                format!("<mass value=\"0\"{rest}")
+            }
+        })
+        .collect()
+}
+
 /// `seconds` at `fraction` of the robot's top command (its scaled 300 mm/s):
 /// whether it stayed upright, and its mean speed towards the beacon, as a
 /// fraction of the top command.
