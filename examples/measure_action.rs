@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::Parser;
 use scasm::Polynomial;
-use testbed::measure::{self, StopwatchConfig};
+use testbed::measure;
 use testbed::{metrics, output};
 
 /// Measure the true command-to-velocity curve of the simulated robot.
@@ -27,7 +27,7 @@ fn main() -> Result<()> {
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
     let commands = measure::paper_commands(scenario.scale());
-    let stopwatch = StopwatchConfig::scaled(scenario.scale());
+    let stopwatch = scenario.stopwatch();
     let measured = measure::measure_action(description, sim_config, &stopwatch, &commands)?;
     let wall = started.elapsed().as_secs_f64();
 

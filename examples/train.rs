@@ -19,7 +19,6 @@ use scasm_testbed::{ScenarioArgs, TrialArgs};
 use testbed::dataset::{self, DatasetMeta};
 use testbed::demos::{Demos, run_demos};
 use testbed::experiment;
-use testbed::measure::StopwatchConfig;
 use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
@@ -142,10 +141,7 @@ fn main() -> Result<()> {
     let (header, table) = report::table::results_table(aggregate, &models);
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
-    println!(
-        "{}",
-        models.describe(&StopwatchConfig::scaled(scenario.scale()))
-    );
+    println!("{}", models.describe(&scenario.stopwatch()));
     println!("\n{}", aggregate.describe_localisation());
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
@@ -186,7 +182,7 @@ fn main() -> Result<()> {
             ),
             format!(
                 "The {} (cache key {}).",
-                models.describe(&StopwatchConfig::scaled(scenario.scale())),
+                models.describe(&scenario.stopwatch()),
                 scenario.reference_key()
             ),
             format!("Made by {}.", made_by.describe()),

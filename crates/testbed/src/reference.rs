@@ -106,7 +106,7 @@ pub fn key(scenario: &Scenario) -> String {
         robot_text.hash(&mut h);
     }
     format!("{:?}", scenario.sim).hash(&mut h);
-    format!("{:?}", StopwatchConfig::scaled(scenario.scale())).hash(&mut h);
+    format!("{:?}", scenario.stopwatch()).hash(&mut h);
     MEASURE_READINGS.hash(&mut h);
     PROTOCOL_VERSION.hash(&mut h);
     format!("{:016x}", h.finish())
@@ -142,7 +142,7 @@ pub fn measured_models(
     let action = measure::measure_action(
         &scenario.description,
         scenario.sim,
-        &StopwatchConfig::scaled(scale),
+        &scenario.stopwatch(),
         &measure::paper_commands(scale),
     )?;
     let sensor = measure::measure_sensor(

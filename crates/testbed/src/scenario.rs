@@ -81,6 +81,9 @@ pub struct Scenario {
     pub blank: crate::trial::Blanks,
 }
 
+/// The paper's trial length, s (at the ERS-7's scale).
+pub const PAPER_DURATION_S: f64 = 150.0;
+
 /// The longest trial, s (a day): a trial keeps every frame in memory, about
 /// 0.1 kB each at 20 Hz.
 pub const MAX_DURATION_S: f64 = 86_400.0;
@@ -146,7 +149,7 @@ impl Scenario {
             learner_name: crate::learners::DEFAULT.into(),
             learner: ScasmConfig::default(),
             mode: LearningMode::Simultaneous,
-            duration_s: 150.0,
+            duration_s: PAPER_DURATION_S,
             seeds: (0, 15),
             blank: Default::default(),
         })
@@ -284,12 +287,12 @@ impl Scenario {
                 // The paper's experiment at the robot's scale: its commands,
                 // trial length and the learner's time constants scale too.
                 let scale = RobotScale::of(&robot.description);
-                let paper = Self::paper().map_err(|e| bad(e.to_string()))?;
+                let paper = ScasmConfig::default();
                 self.learner = ScasmConfig {
-                    command_scale: paper.learner.command_scale * scale.speed(),
-                    ..paper.learner.time_scaled(scale.time())
+                    command_scale: paper.command_scale * scale.speed(),
+                    ..paper.time_scaled(scale.time())
                 };
-                self.duration_s = paper.duration_s * scale.time();
+                self.duration_s = PAPER_DURATION_S * scale.time();
                 self.sim = sim;
                 self.description = robot.description;
                 self.urdf_text = robot.urdf_text;
@@ -469,6 +472,11 @@ impl Scenario {
         } else {
             RobotScale::ONE
         }
+    }
+
+    /// The stopwatch protocol at the robot's scale.
+    pub fn stopwatch(&self) -> crate::measure::StopwatchConfig {
+        crate::measure::StopwatchConfig::scaled(self.scale())
     }
 
     /// The largest walk command, mm/s: the paper's 300 at the robot's scale.

@@ -5,7 +5,6 @@
 use scasm::{Polynomial, ScasmConfig};
 use serde::{Deserialize, Serialize};
 
-use crate::measure::StopwatchConfig;
 use crate::metrics;
 use crate::reference::{MeasuredModels, Reference};
 use crate::scenario::Scenario;
@@ -417,7 +416,7 @@ impl RunSummary {
             &rows,
             &scenario.learner_name,
             crate::learners::parameters(&scenario.learner_name, scenario),
-            &models.describe(&StopwatchConfig::scaled(scenario.scale())),
+            &models.describe(&scenario.stopwatch()),
         );
         Self {
             aggregate: Aggregate::of(&rows),
