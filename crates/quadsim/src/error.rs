@@ -141,6 +141,16 @@ pub enum SimConfigError {
         /// The value given.
         value: f64,
     },
+    /// A setting was changed during a run that cannot change once the world
+    /// is built.
+    #[error(
+        "{key} cannot change during a run; what can: world.friction, servo.torque_scale, \
+         servo.speed_scale, beacon.height_m, beacon.centre_m, beacon.radius_m, camera.noise_px"
+    )]
+    NotLive {
+        /// The setting's name.
+        key: &'static str,
+    },
 }
 
 /// Why a simulation could not be built.

@@ -191,6 +191,54 @@ impl SimConfig {
         Ok(())
     }
 
+    /// Checks that `new` differs from these settings only in what can change
+    /// during a run ([`QuadrupedSim::change_world`]): the floor's friction, the
+    /// servos' torque and speed scales, the beacon's band (not where it stands)
+    /// and the camera's noise. Names the first other setting that differs.
+    pub fn check_live_change(&self, new: &SimConfig) -> Result<(), SimConfigError> {
+        new.validate()?;
+        let (a, b) = (self, new);
+        let fixed: [(&'static str, bool); 12] = [
+            ("physics.dt", a.dt_s == b.dt_s),
+            (
+                "physics.solver_iterations",
+                a.solver_iterations == b.solver_iterations,
+            ),
+            (
+                "physics.joint_damping",
+                a.joint_damping_nm_s_per_rad == b.joint_damping_nm_s_per_rad,
+            ),
+            ("servo.kp", a.servo.kp_nm_per_rad == b.servo.kp_nm_per_rad),
+            (
+                "servo.kd",
+                a.servo.kd_nm_s_per_rad == b.servo.kd_nm_s_per_rad,
+            ),
+            (
+                "servo.command_period",
+                a.servo.command_period_s == b.servo.command_period_s,
+            ),
+            ("walk", a.walk == b.walk),
+            ("heading", a.heading == b.heading),
+            ("beacon.xy", a.beacon.xy_m == b.beacon.xy_m),
+            (
+                "camera intrinsics",
+                a.camera.intrinsics == b.camera.intrinsics,
+            ),
+            (
+                "camera.frame_period_s",
+                a.camera.frame_period_s == b.camera.frame_period_s,
+            ),
+            (
+                "world.start_distance_m",
+                a.start_distance_m == b.start_distance_m,
+            ),
+        ];
+        match fixed.iter().find(|(_, same)| !same) {
+            Some(&(key, _)) => Err(SimConfigError::NotLive { key }),
+            None => Ok(()),
+        }
+    }
+
     fn steps_per_command(&self) -> u64 {
         ((self.servo.command_period_s / self.dt_s).round() as u64).max(1)
     }
@@ -205,6 +253,9 @@ pub struct QuadrupedSim {
     camera_mount: Pose,
     /// Per leg: abduction, hip, knee.
     joints: Vec<[MultibodyJointHandle; 3]>,
+    /// Per leg: the URDF's effort limits, N m, and velocity limits, rad/s
+    /// (before the servo config's scales).
+    urdf_limits: Vec<([f64; 3], [f64; 3])>,
     torque_limits: Vec<[f64; 3]>,
     /// Setpoint speed limits, rad/s, in the servos' order (leg by leg).
     speed_limits: Vec<f64>,
@@ -317,8 +368,7 @@ impl QuadrupedSim {
         let camera_parent = body_of(&description.camera.parent)
             .ok_or_else(|| no_link(&description.camera.parent))?;
         let mut joints = Vec::new();
-        let mut torque_limits = Vec::new();
-        let mut speed_limits = Vec::new();
+        let mut urdf_limits = Vec::new();
         for leg in &description.legs {
             let mut h = Vec::new();
             for name in &leg.joints {
@@ -327,8 +377,7 @@ impl QuadrupedSim {
                 })?);
             }
             joints.push([h[0], h[1], h[2]]);
-            torque_limits.push(leg.effort_nm.map(|e| e * config.servo.torque_scale));
-            speed_limits.extend(leg.velocity_rad_s.map(|v| v * config.servo.speed_scale));
+            urdf_limits.push((leg.effort_nm, leg.velocity_rad_s));
         }
 
         let (t, rpy) = (description.camera.xyz, description.camera.rpy);
@@ -361,8 +410,9 @@ impl QuadrupedSim {
             camera_parent,
             camera_mount,
             joints,
-            torque_limits,
-            speed_limits,
+            torque_limits: Vec::new(),
+            speed_limits: Vec::new(),
+            urdf_limits,
             walk,
             servos: ServoSetpoints::new(initial_angles.clone()),
             heading: HeadingKeeper::default(),
@@ -377,6 +427,7 @@ impl QuadrupedSim {
             fresh_frame: false,
         };
         sim.set_joint_damping();
+        sim.scale_limits();
         sim.pose_joints(&initial_angles);
         sim.motorise_joints();
         sim.apply_servos();
@@ -392,6 +443,57 @@ impl QuadrupedSim {
                 *d = damping;
             }
         }
+    }
+
+    /// The servos' torque and speed limits: the URDF's, times the config's scales.
+    fn scale_limits(&mut self) {
+        let s = self.config.servo;
+        self.torque_limits = self
+            .urdf_limits
+            .iter()
+            .map(|(effort, _)| effort.map(|e| e * s.torque_scale))
+            .collect();
+        self.speed_limits = self
+            .urdf_limits
+            .iter()
+            .flat_map(|(_, velocity)| velocity.map(|v| v * s.speed_scale))
+            .collect();
+    }
+
+    /// Changes the world during a run, between two steps: the floor's and the
+    /// feet's friction, the servos' torque and speed scales (a tiring
+    /// battery), the beacon's band, the camera's noise. Anything else cannot
+    /// change once the world is built, and is refused (see
+    /// [`SimConfig::check_live_change`]); then nothing changes. The camera's
+    /// noise stream carries on where it was.
+    pub fn change_world(&mut self, new: SimConfig) -> Result<(), SimConfigError> {
+        let mut new = new;
+        new.camera.noise_seed = self.config.camera.noise_seed;
+        self.config.check_live_change(&new)?;
+        let old = std::mem::replace(&mut self.config, new);
+        if new.friction != old.friction {
+            let beacon = self.world.colliders[self.band].parent();
+            let friction = new.friction as Real;
+            for (_, collider) in self.world.colliders.iter_mut() {
+                if collider.parent() != beacon {
+                    collider.set_friction(friction);
+                }
+            }
+        }
+        if new.servo != old.servo {
+            self.scale_limits();
+            self.apply_servos();
+        }
+        if new.beacon != old.beacon {
+            if let Some(body) = self.world.colliders[self.band].parent() {
+                self.world.remove_body_with_colliders(body, true);
+            }
+            self.band = new.beacon.insert(&mut self.world);
+        }
+        if new.camera.noise_px != old.camera.noise_px {
+            self.camera.set_noise_px(new.camera.noise_px);
+        }
+        Ok(())
     }
 
     /// Places the joints at these angles (abduction, hip, knee per leg) before the

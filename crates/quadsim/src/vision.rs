@@ -244,6 +244,15 @@ impl Camera {
         }
     }
 
+    /// Changes the reading noise from now on (the stream carries on). The
+    /// value must have been checked (finite, non-negative).
+    pub(crate) fn set_noise_px(&mut self, noise_px: f64) {
+        if let Ok(noise) = Normal::new(0.0, noise_px) {
+            self.config.noise_px = noise_px;
+            self.noise = noise;
+        }
+    }
+
     /// The settings in use.
     pub fn config(&self) -> &CameraConfig {
         &self.config
