@@ -20,7 +20,7 @@ use testbed::experiment;
 use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::scenario::Scenario;
-use testbed::summary::RunSummary;
+use testbed::summary::{self, RunSummary};
 
 /// Replay recorded trials to a learner.
 #[derive(Debug, Parser)]
@@ -115,10 +115,14 @@ fn main() -> Result<()> {
     );
     output::write_json(&out.join("summary.json"), &run.json)?;
     let (rows, aggregate) = (&run.rows, &run.aggregate);
-    let (header, table) = report::table::results_table(aggregate, models);
+    // The final figures are judged in the world as it ends.
+    let (header, table) = report::table::results_table(aggregate, models.last());
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("\n{}", aggregate.describe_localisation());
+    if let Some(text) = summary::describe_recovery(rows, &scenarios[0].changes_text()) {
+        println!("\n{text}");
+    }
     println!(
         "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads; results in {}",
         rows.len(),

@@ -23,7 +23,7 @@ use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
 use testbed::scenario::Scenario;
-use testbed::summary::RunSummary;
+use testbed::summary::{self, RunSummary};
 use testbed::trial::{Recording, TrialOutcome};
 
 /// Run calibration trials on the simulated quadruped (the paper's experiment).
@@ -97,6 +97,12 @@ fn main() -> Result<()> {
     );
     output::write_measured_action(&out, &models.action)?;
     output::write_measured_sensor(&out, &models.sensor)?;
+    for (i, changed) in models.changes.iter().enumerate() {
+        let dir = out.join(format!("world-{}", i + 1));
+        std::fs::create_dir_all(&dir)?;
+        output::write_measured_action(&dir, &changed.models.action)?;
+        output::write_measured_sensor(&dir, &changed.models.sensor)?;
+    }
 
     println!(
         "Running {} trials of {:.0} s ({:?}, learner {}) on {} threads...",
@@ -138,11 +144,15 @@ fn main() -> Result<()> {
         "no trial finished ok: {}",
         aggregate.describe()
     );
-    let (header, table) = report::table::results_table(aggregate, &models);
+    // The final figures are judged in the world as it ends.
+    let (header, table) = report::table::results_table(aggregate, models.last());
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("{}", models.describe(&scenario.stopwatch()));
     println!("\n{}", aggregate.describe_localisation());
+    if let Some(text) = summary::describe_recovery(rows, &scenario.changes_text()) {
+        println!("\n{text}");
+    }
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;
@@ -154,7 +164,7 @@ fn main() -> Result<()> {
         .filter_map(|((_, r), _)| r.ok().map(|(_, o)| o))
         .collect();
     let data = report::paper::RunData {
-        measured: &models,
+        measured: models.last(),
         trials: &outcomes,
         demos: &demos,
         best: (best.0, best.1),

@@ -30,6 +30,7 @@ fn config(seed: u64, duration_s: f64) -> TrialConfig {
         behaviour: experiment::behaviour_for(&setup().0, &setup().1),
         judge_every_s: 5.0,
         blank: Default::default(),
+        changes: Vec::new(),
     }
 }
 
@@ -296,4 +297,55 @@ fn blanked_readings_leave_the_localiser_to_dead_reckoning_until_they_return() {
         end_of_blank > before && after < 0.8 * end_of_blank,
         "std {before:.1} at the blank's start, {end_of_blank:.1} at its end, {after:.1} 3 s later"
     );
+}
+
+#[test]
+fn a_scheduled_change_changes_the_world_and_the_yardstick_at_its_time() {
+    let mut scenario = setup().0.clone();
+    scenario
+        .apply_toml(
+            "taller_band.toml",
+            "[trial]\nduration = 40.0\n\n[[change]]\nat_s = 30.0\nkey = \"beacon.height_m\"\nvalue = 0.3\n",
+        )
+        .expect("valid");
+    let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
+    let models = testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
+    // The changed world is measured by the same protocols: standing at each
+    // distance, a band 1.5 times as tall reads about 1.5 times as tall.
+    assert_eq!(models.changes.len(), 1);
+    let changed = &models.changes[0];
+    assert_eq!(changed.at_s, 30.0);
+    for (before, after) in models.sensor.iter().zip(&changed.models.sensor) {
+        let ratio = after.obs_px / before.obs_px;
+        assert!(
+            (ratio - 1.5).abs() < 0.08,
+            "{ratio} at {} mm",
+            before.distance_mm
+        );
+    }
+    // Every judgement is against the world in force when it is made.
+    let reference = models.reference();
+    assert_eq!(reference.at(30.0).sensor, reference.sensor);
+    assert_eq!(reference.at(30.05).sensor, reference.changes[0].1.sensor);
+    assert_eq!(reference.last().sensor, reference.changes[0].1.sensor);
+
+    // The recorded trial's readings (times the distance, to take out the
+    // robot's motion) jump by 1.5 at 30 s, and not before.
+    let recording = experiment::record(&scenario, &models, 2).expect("recorded");
+    let scaled = |from_s: f64, to_s: f64| {
+        let v: Vec<f64> = recording
+            .frames
+            .iter()
+            .filter(|f| f.t_s >= from_s - 1e-9 && f.t_s < to_s - 1e-9)
+            .filter_map(|f| f.obs_px.map(|o| o * f.truth.x_mm))
+            .collect();
+        assert!(v.len() >= 8, "{} readings in [{from_s}, {to_s})", v.len());
+        v.iter().sum::<f64>() / v.len() as f64
+    };
+    let jump = scaled(30.0, 30.5) / scaled(29.5, 30.0);
+    let steady = scaled(29.5, 30.0) / scaled(29.0, 29.5);
+    assert!((jump - 1.5).abs() < 0.1, "jump {jump}");
+    assert!((steady - 1.0).abs() < 0.05, "steady {steady}");
+    let outcome = experiment::learn(&scenario, &models, &recording, "scasm").expect("learned");
+    assert_eq!(outcome.world_changes_s, vec![30.0]);
 }

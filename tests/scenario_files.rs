@@ -189,3 +189,105 @@ fn blanked_intervals_are_checked_against_the_trial() {
     );
     assert_eq!(s.duration_s, 150.0);
 }
+
+const FRICTION_CHANGE: &str = include_str!("../assets/scenarios/friction_change.toml");
+
+#[test]
+fn a_scheduled_change_is_read_checked_and_written_back() {
+    let mut s = Scenario::paper().expect("scenario");
+    s.apply_toml("friction_change.toml", FRICTION_CHANGE)
+        .expect("valid");
+    assert_eq!(s.duration_s, 600.0);
+    assert_eq!(s.changes.len(), 1);
+    let worlds = s.worlds().expect("valid changes");
+    assert_eq!(worlds.len(), 2);
+    assert_eq!((worlds[0].0, worlds[0].1.friction), (0.0, 0.9));
+    assert_eq!((worlds[1].0, worlds[1].1.friction), (300.0, 0.45));
+    // Only the friction differs between the two worlds.
+    let mut after = worlds[1].1;
+    after.friction = 0.9;
+    assert_eq!(after, worlds[0].1);
+    // The run's config.toml reads back to the same schedule.
+    let mut back = Scenario::paper().expect("scenario");
+    back.apply_toml("config.toml", &s.to_toml()).expect("valid");
+    assert_eq!(back.changes, s.changes);
+    assert_eq!(back.to_toml(), s.to_toml());
+    // A world setting given on top applies to both worlds, the change on top.
+    s.set("servo.torque_scale=0.8").expect("valid");
+    let worlds = s.worlds().expect("valid");
+    assert_eq!(worlds[1].1.servo.torque_scale, 0.8);
+    assert_eq!(worlds[1].1.friction, 0.45);
+}
+
+fn change(at_s: &str, key: &str, value: &str) -> String {
+    format!(
+        "[trial]\nduration = 600.0\n\n[[change]]\nat_s = {at_s}\nkey = \"{key}\"\nvalue = {value}\n"
+    )
+}
+
+#[test]
+fn a_change_that_cannot_be_made_is_named() {
+    for (text, needles) in [
+        (
+            change("300.0", "world.frictoin", "0.5"),
+            vec!["world.frictoin", "300", "unknown setting"],
+        ),
+        (
+            change("300.0", "physics.dt", "0.002"),
+            vec!["physics.dt", "cannot change during a run"],
+        ),
+        (
+            change("300.0", "camera.hfov_deg", "40"),
+            vec!["camera.hfov_deg", "camera intrinsics cannot change"],
+        ),
+        (
+            change("300.0", "learner.gamma", "0.99"),
+            vec!["learner.gamma", "not part of the world"],
+        ),
+        (
+            change("700.0", "world.friction", "0.5"),
+            vec!["world.friction", "700", "outside the trial"],
+        ),
+        (
+            change("300.0", "world.friction", "-1"),
+            vec!["world.friction", "in [0, 5]"],
+        ),
+        (
+            change("300.0", "world.friction", "\"slippery\""),
+            vec!["world.friction", "slippery"],
+        ),
+        (
+            "[[change]]\nat_s = 10.0\nkey = \"world.friction\"\nvalue = 0.5\nwhen = 3\n".into(),
+            vec!["[[change]]", "when"],
+        ),
+        (
+            "[[change]]\nkey = \"world.friction\"\nvalue = 0.5\n".into(),
+            vec!["[[change]]", "at_s"],
+        ),
+        ("[change]\nat_s = 10.0\n".into(), vec!["[[change]]"]),
+        (
+            format!(
+                "{}\n[[change]]\nat_s = 100.0\nkey = \"camera.noise_px\"\nvalue = 2\n",
+                change("300.0", "world.friction", "0.5")
+            ),
+            vec!["camera.noise_px", "time order"],
+        ),
+    ] {
+        for needle in &needles {
+            refused(&text, needle);
+        }
+    }
+    // Shortening the trial past a change is refused, naming both.
+    let mut s = Scenario::paper().expect("scenario");
+    s.apply_toml("friction_change.toml", FRICTION_CHANGE)
+        .expect("valid");
+    let err = s
+        .set("trial.duration=200")
+        .expect_err("cuts the change")
+        .to_string();
+    assert!(
+        err.contains("world.friction") && err.contains("300"),
+        "{err}"
+    );
+    assert_eq!(s.duration_s, 600.0);
+}

@@ -57,7 +57,7 @@ fn main() -> Result<()> {
         learners::build(&scenario.learner_name, &scenario, &reference).map_err(|e| anyhow!(e))?;
     let config = TrialConfig {
         duration_s: args.seconds.unwrap_or(1e9),
-        ..experiment::trial_config(&scenario, &models, args.seed)
+        ..experiment::trial_config(&scenario, &models, args.seed)?
     };
     let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
     // The world steps one frame, then the learner is fed it: the same feeding

@@ -61,6 +61,7 @@ pub fn figures(data: &RunData) -> Vec<Figure> {
         typical.and_then(|t| fig7a(t, data.measured)),
         typical.and_then(|t| fig7b(t, data.measured)),
         Some(fig8(data.trials, data.best, data.degrees)),
+        change(data.trials),
         typical.and_then(localisation),
     ]
     .into_iter()
@@ -400,22 +401,26 @@ fn over_trials(
 }
 
 fn fig8(trials: &[TrialOutcome], best: (f64, f64), degrees: (usize, usize)) -> Figure {
-    let action = over_trials(trials, |j| j.action_rmse_mm_s);
-    let sensor = over_trials(trials, |j| j.sensor_rmse_mm);
+    let mut series = errors_over_time(trials, 0.0);
     let t_end = trials
         .iter()
         .flat_map(|t| t.over_time.last())
         .map(|j| j.t_s)
         .fold(0.0, f64::max);
-    let band = |v: &[(f64, f64, f64)], colour| {
+    series.extend([
         Series::new(
-            "",
-            Mark::Band(v.iter().map(|p| p.1 + p.2).collect()),
-            colour,
-            v.iter().map(|p| (p.0, (p.1 - p.2).max(0.0))).collect(),
-        )
-    };
-    let mean = |v: &[(f64, f64, f64)]| v.iter().map(|p| (p.0, p.1)).collect();
+            &format!("best degree-{} action model", degrees.0),
+            Mark::Dashed,
+            colours::BLUE,
+            vec![(0.0, best.0), (t_end, best.0)],
+        ),
+        Series::new(
+            &format!("best degree-{} sensor model", degrees.1),
+            Mark::Dashed,
+            colours::RED,
+            vec![(0.0, best.1), (t_end, best.1)],
+        ),
+    ]);
     Figure {
         stem: "fig8",
         chart: Chart {
@@ -425,37 +430,78 @@ fn fig8(trials: &[TrialOutcome], best: (f64, f64), degrees: (usize, usize)) -> F
             ),
             x_label: "time (s)".into(),
             y_label: "error (action mm/s, sensor mm)".into(),
-            series: vec![
-                band(&action, colours::BLUE),
-                band(&sensor, colours::RED),
-                Series::new(
-                    "learned action model (mm/s)",
-                    Mark::Line,
-                    colours::BLUE,
-                    mean(&action),
-                ),
-                Series::new(
-                    "learned sensor model (mm)",
-                    Mark::Line,
-                    colours::RED,
-                    mean(&sensor),
-                ),
-                Series::new(
-                    &format!("best degree-{} action model", degrees.0),
-                    Mark::Dashed,
-                    colours::BLUE,
-                    vec![(0.0, best.0), (t_end, best.0)],
-                ),
-                Series::new(
-                    &format!("best degree-{} sensor model", degrees.1),
-                    Mark::Dashed,
-                    colours::RED,
-                    vec![(0.0, best.1), (t_end, best.1)],
-                ),
-            ],
+            series,
             legend: SeriesLabelPosition::UpperRight,
         },
     }
+}
+
+/// Each model's error from `from_s` on, mean (line) +- std (band) over the
+/// trials, and a grey line at each change of the world.
+fn errors_over_time(trials: &[TrialOutcome], from_s: f64) -> Vec<Series> {
+    let after = |v: Vec<(f64, f64, f64)>| -> Vec<(f64, f64, f64)> {
+        v.into_iter().filter(|p| p.0 >= from_s).collect()
+    };
+    let action = after(over_trials(trials, |j| j.action_rmse_mm_s));
+    let sensor = after(over_trials(trials, |j| j.sensor_rmse_mm));
+    let band = |v: &[(f64, f64, f64)], colour| {
+        Series::new(
+            "",
+            Mark::Band(v.iter().map(|p| p.1 + p.2).collect()),
+            colour,
+            v.iter().map(|p| (p.0, (p.1 - p.2).max(0.0))).collect(),
+        )
+    };
+    let mean = |v: &[(f64, f64, f64)]| v.iter().map(|p| (p.0, p.1)).collect();
+    let top = action
+        .iter()
+        .chain(&sensor)
+        .map(|p| p.1 + p.2)
+        .fold(0.0, f64::max);
+    let changes = trials.first().map_or(&[][..], |t| &t.world_changes_s[..]);
+    let mut series = vec![
+        band(&action, colours::BLUE),
+        band(&sensor, colours::RED),
+        Series::new(
+            "learned action model (mm/s)",
+            Mark::Line,
+            colours::BLUE,
+            mean(&action),
+        ),
+        Series::new(
+            "learned sensor model (mm)",
+            Mark::Line,
+            colours::RED,
+            mean(&sensor),
+        ),
+    ];
+    for (i, &at_s) in changes.iter().enumerate() {
+        series.push(Series::new(
+            if i == 0 { "the world changes" } else { "" },
+            Mark::Dashed,
+            colours::GREY,
+            vec![(at_s, 0.0), (at_s, top)],
+        ));
+    }
+    series
+}
+
+/// The errors across the first change of the world, from 100 s before it.
+fn change(trials: &[TrialOutcome]) -> Option<Figure> {
+    let at_s = *trials.first()?.world_changes_s.first()?;
+    Some(Figure {
+        stem: "change",
+        chart: Chart {
+            title: format!(
+                "Across the world's change at {at_s:.0} s, mean +- std of {} trials",
+                trials.len()
+            ),
+            x_label: "time (s)".into(),
+            y_label: "error (action mm/s, sensor mm)".into(),
+            series: errors_over_time(trials, (at_s - 100.0).max(0.0)),
+            legend: SeriesLabelPosition::UpperRight,
+        },
+    })
 }
 
 /// What each figure shows (the page's captions).
@@ -484,6 +530,9 @@ pub fn caption(stem: &str) -> &'static str {
         }
         "fig8" => {
             "Fig. 8. Errors of the learned models every 5 s, mean and std over the trials, with the best possible polynomial of each model's degree (dashed)."
+        }
+        "change" => {
+            "The world changes (beyond the paper): the learned models' errors from 100 s before the world's first change, mean and std over the trials, each judged against the measured models of the world in force at the time."
         }
         _ => "",
     }

@@ -64,6 +64,7 @@ pub fn run_demos(
         behaviour,
         judge_every_s: MAX_DEMO_S,
         blank: Default::default(),
+        changes: Vec::new(),
     };
 
     let far_m = models.sensor.last().map_or(3.6, |s| s.distance_mm / 1000.0);
@@ -80,8 +81,12 @@ pub fn run_demos(
         arrived: false,
     };
     let reference = models.reference();
-    let mut runner =
-        TrialRunner::with_behaviour(&scenario.description, walk_sim, config, Box::new(walk))?;
+    let mut runner = TrialRunner::with_behaviour(
+        &scenario.description,
+        walk_sim,
+        config.clone(),
+        Box::new(walk),
+    )?;
     let walk_frames = record_phases(&mut runner, 1)?;
     let constant_walk = learn(
         walk_frames,

@@ -67,14 +67,19 @@ pub fn behaviour_for(scenario: &Scenario, models: &MeasuredModels) -> BehaviourC
 pub const JUDGE_EVERY_S: f64 = 5.0;
 
 /// The trial settings of `scenario` from `seed`.
-pub fn trial_config(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> TrialConfig {
-    TrialConfig {
+pub fn trial_config(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+) -> Result<TrialConfig, TrialError> {
+    Ok(TrialConfig {
         duration_s: scenario.duration_s,
         seed,
         behaviour: behaviour_for(scenario, models),
         judge_every_s: JUDGE_EVERY_S,
         blank: scenario.blank,
-    }
+        changes: scenario.worlds()?.split_off(1),
+    })
 }
 
 /// Records one trial of `scenario` from `seed`: the world only.
@@ -86,7 +91,7 @@ pub fn record(
     trial::record(
         &scenario.description,
         scenario.sim,
-        trial_config(scenario, models, seed),
+        trial_config(scenario, models, seed)?,
     )
 }
 
@@ -171,10 +176,11 @@ pub struct Job<'a> {
 /// Jobs with the same key can share one recording, whatever their learners.
 pub fn world_key(scenario: &Scenario, seed: u64) -> String {
     format!(
-        "{}/{}/{}/{seed}",
+        "{}/{}/{}/{}/{seed}",
         scenario.reference_key(),
         scenario.duration_s,
-        scenario.blank.to_text()
+        scenario.blank.to_text(),
+        scenario.changes_text()
     )
 }
 

@@ -31,10 +31,23 @@ pub struct MeasuredModels {
     /// Whether they came from the cache.
     #[serde(skip)]
     pub from_cache: bool,
+    /// If the world changes during a trial: the models of the world after
+    /// each change, measured by the same protocols.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub changes: Vec<ChangedModels>,
+}
+
+/// The measured models of the world after a change during a trial.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ChangedModels {
+    /// When the change is made, s.
+    pub at_s: f64,
+    /// The models of the changed world.
+    pub models: MeasuredModels,
 }
 
 impl MeasuredModels {
-    /// The reference for judging.
+    /// The reference for judging (with the changed worlds' models, if any).
     pub fn reference(&self) -> Reference {
         Reference {
             action: self
@@ -47,7 +60,17 @@ impl MeasuredModels {
                 .iter()
                 .map(|r| (r.distance_mm, r.obs_px))
                 .collect(),
+            changes: self
+                .changes
+                .iter()
+                .map(|c| (c.at_s, c.models.reference()))
+                .collect(),
         }
+    }
+
+    /// The models of the world as it ends (after its last change, if any).
+    pub fn last(&self) -> &MeasuredModels {
+        self.changes.last().map_or(self, |c| &c.models)
     }
 
     /// Fastest forwards minus fastest backwards velocity, mm/s.
@@ -119,9 +142,39 @@ struct CachedReference {
     models: MeasuredModels,
 }
 
-/// Measures the reference models of `scenario`, or reads them from `cache_dir`
-/// if they were measured before for the same robot, world and protocols.
+/// What could not be measured.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MeasureError {
+    /// A world could not be built.
+    #[error(transparent)]
+    Sim(#[from] SimError),
+    /// A scheduled change of the world cannot be made.
+    #[error(transparent)]
+    Setting(#[from] crate::scenario::SettingError),
+}
+
+/// Measures the reference models of `scenario` (and of its world after each
+/// scheduled change), or reads them from `cache_dir` if they were measured
+/// before for the same robot, world and protocols.
 pub fn measured_models(
+    scenario: &Scenario,
+    cache_dir: Option<&Path>,
+) -> Result<MeasuredModels, MeasureError> {
+    let mut models = measured_world(&scenario.world(0)?, cache_dir)?;
+    for (i, change) in scenario.changes.iter().enumerate() {
+        let after = measured_world(&scenario.world(i + 1)?, cache_dir)?;
+        models.from_cache &= after.from_cache;
+        models.changes.push(ChangedModels {
+            at_s: change.at_s,
+            models: after,
+        });
+    }
+    Ok(models)
+}
+
+/// The models of one world (no changes), measured or from the cache.
+fn measured_world(
     scenario: &Scenario,
     cache_dir: Option<&Path>,
 ) -> Result<MeasuredModels, SimError> {
@@ -156,6 +209,7 @@ pub fn measured_models(
         action,
         sensor,
         from_cache: false,
+        changes: Vec::new(),
     };
     if let Some(p) = &path {
         // A cache that cannot be written costs only time, never the run.
@@ -181,6 +235,9 @@ pub struct Reference {
     pub action: Vec<(f64, f64)>,
     /// `(distance mm, reading px)` by the stand-and-read protocol.
     pub sensor: Vec<(f64, f64)>,
+    /// If the world changes during a trial: from when (s), the reference of
+    /// the changed world (with no changes of its own).
+    pub changes: Vec<(f64, Reference)>,
 }
 
 /// The learned models' errors at one moment.
@@ -197,15 +254,32 @@ pub struct Judgement {
 }
 
 impl Reference {
-    /// Judges a pair of models.
+    /// The reference of the world as it is at `t_s`: a change made at `at_s`
+    /// is in force for models judged after it (a judgement at `at_s` itself is
+    /// of the world before).
+    pub fn at(&self, t_s: f64) -> &Reference {
+        self.changes
+            .iter()
+            .rev()
+            .find(|(at_s, _)| *at_s < t_s)
+            .map_or(self, |(_, r)| r)
+    }
+
+    /// The reference of the world as it ends.
+    pub fn last(&self) -> &Reference {
+        self.at(f64::INFINITY)
+    }
+
+    /// Judges a pair of models against the world as it is at `t_s`.
     pub fn judge_models(
         &self,
         t_s: f64,
         action: Option<Polynomial>,
         sensor: Option<Polynomial>,
     ) -> Judgement {
-        let a = action.map(|m| metrics::action_error(&m, &self.action));
-        let s = sensor.map(|m| metrics::sensor_error(&m, &self.sensor));
+        let world = self.at(t_s);
+        let a = action.map(|m| metrics::action_error(&m, &world.action));
+        let s = sensor.map(|m| metrics::sensor_error(&m, &world.sensor));
         Judgement {
             t_s,
             action_rmse_mm_s: a.map(|e| e.rmse),

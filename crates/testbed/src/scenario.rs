@@ -31,6 +31,16 @@ pub enum SettingError {
         /// What is wrong.
         reason: String,
     },
+    /// A scheduled change of the world cannot be made.
+    #[error("the change of `{key}` at {at_s} s: {reason}")]
+    Change {
+        /// The setting it changes.
+        key: String,
+        /// When, s.
+        at_s: f64,
+        /// What is wrong.
+        reason: String,
+    },
     /// A scenario or robot file cannot be read or used.
     #[error("{file}: {reason}")]
     File {
@@ -79,6 +89,22 @@ pub struct Scenario {
     pub seeds: (u64, u64),
     /// When the camera sees no beacon.
     pub blank: crate::trial::Blanks,
+    /// Changes of the world during each trial, in time order.
+    pub changes: Vec<Change>,
+}
+
+/// A change of the world during a trial: at `at_s`, the setting `key` becomes
+/// `value` (a scenario file's `[[change]]`). Only what the world can change
+/// while it runs may change (see [`quadsim::SimConfig::check_live_change`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Change {
+    /// When, s from the trial's start (within the trial).
+    pub at_s: f64,
+    /// The setting, e.g. `world.friction`.
+    pub key: String,
+    /// Its new value, as `--set` would write it.
+    pub value: String,
 }
 
 /// The paper's trial length, s (at the ERS-7's scale).
@@ -152,6 +178,7 @@ impl Scenario {
             duration_s: PAPER_DURATION_S,
             seeds: (0, 15),
             blank: Default::default(),
+            changes: Vec::new(),
         })
     }
 
@@ -213,6 +240,13 @@ impl Scenario {
         let mut ordered: Vec<(&String, &toml::Value)> = table.iter().collect();
         ordered.sort_by_key(|(section, _)| section_rank(section));
         for (section, entries) in ordered {
+            if section == "change" {
+                changed.add_changes(entries).map_err(|e| match e {
+                    SettingError::File { reason, .. } => file_error(reason),
+                    other => other,
+                })?;
+                continue;
+            }
             let toml::Value::Table(entries) = entries else {
                 return Err(file_error(format!(
                     "`{section}` must be a [section] of settings"
@@ -247,6 +281,102 @@ impl Scenario {
         }
         *self = changed;
         Ok(())
+    }
+
+    /// Adds a scenario file's `[[change]]` entries (an array of tables with
+    /// `at_s`, `key` and `value`) after the changes already scheduled.
+    fn add_changes(&mut self, entries: &toml::Value) -> Result<(), SettingError> {
+        let bad = |reason: String| SettingError::File {
+            file: String::new(),
+            reason,
+        };
+        let toml::Value::Array(list) = entries else {
+            return Err(bad(
+                "`change` must be an array of tables: [[change]] with at_s, key and value".into(),
+            ));
+        };
+        for entry in list {
+            let mut entry = entry.clone();
+            // The value as `--set` writes it, whatever its TOML type.
+            if let Some(t) = entry.as_table_mut() {
+                if let Some(v) = t.get("value").cloned() {
+                    let text = match v {
+                        toml::Value::String(s) => s,
+                        other => other.to_string(),
+                    };
+                    t.insert("value".into(), toml::Value::String(text));
+                }
+                if let Some(toml::Value::Integer(i)) = t.get("at_s").cloned() {
+                    t.insert("at_s".into(), toml::Value::Float(i as f64));
+                }
+            }
+            let change: Change = entry
+                .try_into()
+                .map_err(|e: toml::de::Error| bad(format!("[[change]]: {}", e.message())))?;
+            self.changes.push(change);
+        }
+        self.worlds().map(|_| ())
+    }
+
+    /// The world as it starts and after each scheduled change: `(from s,
+    /// settings)`, the first from 0. Says which change cannot be made: a time
+    /// outside the trial or out of order, an unknown key or a bad value, or a
+    /// setting that cannot change during a run.
+    pub fn worlds(&self) -> Result<Vec<(f64, SimConfig)>, SettingError> {
+        let mut world = self.clone();
+        world.changes.clear();
+        let mut out = vec![(0.0, world.sim)];
+        for c in &self.changes {
+            let fail = |reason: String| SettingError::Change {
+                key: c.key.clone(),
+                at_s: c.at_s,
+                reason,
+            };
+            if !(c.at_s > 0.0 && c.at_s < self.duration_s) {
+                return Err(fail(format!(
+                    "outside the trial: must be in (0, {}) s",
+                    self.duration_s
+                )));
+            }
+            if c.at_s < out.last().map_or(0.0, |w| w.0) {
+                return Err(fail("changes must be in time order".into()));
+            }
+            let (before, settings) = (world.sim, world.to_toml());
+            world
+                .set(&format!("{}={}", c.key, c.value))
+                .map_err(|e| fail(e.to_string()))?;
+            let mut rest = world.clone();
+            rest.sim = before;
+            if rest.to_toml() != settings {
+                return Err(fail(
+                    "not part of the world: it cannot change during a run".into(),
+                ));
+            }
+            before
+                .check_live_change(&world.sim)
+                .map_err(|e| fail(e.to_string()))?;
+            out.push((c.at_s, world.sim));
+        }
+        Ok(out)
+    }
+
+    /// The scenario of the world after change `i` (0: as it starts), with no
+    /// changes: what the reference of that world is measured on.
+    pub fn world(&self, i: usize) -> Result<Scenario, SettingError> {
+        let worlds = self.worlds()?;
+        let mut s = self.clone();
+        s.changes.clear();
+        s.sim = worlds.get(i).map_or(s.sim, |w| w.1);
+        Ok(s)
+    }
+
+    /// The changes, as `at:key=value;...` (for keys and logs).
+    pub fn changes_text(&self) -> String {
+        self.changes
+            .iter()
+            .map(|c| format!("{}:{}={}", c.at_s, c.key, c.value))
+            .collect::<Vec<_>>()
+            .join(";")
     }
 
     fn apply(&mut self, assignment: &str) -> Result<(), SettingError> {
@@ -386,6 +516,9 @@ impl Scenario {
         // Catch range errors at the door, naming the key.
         self.learner.validate().map_err(|e| bad(e.to_string()))?;
         self.sim.validate().map_err(|e| bad(e.to_string()))?;
+        // A setting may also make a scheduled change impossible (a trial
+        // shorter than it, say).
+        self.worlds()?;
         Ok(())
     }
 
@@ -461,6 +594,24 @@ impl Scenario {
                 t.insert(name.into(), value);
             }
         }
+        if !self.changes.is_empty() {
+            let list = self
+                .changes
+                .iter()
+                .map(|c| {
+                    let mut t = toml::Table::new();
+                    t.insert("at_s".into(), toml::Value::Float(c.at_s));
+                    t.insert("key".into(), toml::Value::String(c.key.clone()));
+                    let value = c
+                        .value
+                        .parse::<f64>()
+                        .map_or_else(|_| toml::Value::String(c.value.clone()), toml::Value::Float);
+                    t.insert("value".into(), value);
+                    toml::Value::Table(t)
+                })
+                .collect();
+            table.insert("change".into(), toml::Value::Array(list));
+        }
         toml::to_string(&table).unwrap_or_default()
     }
 
@@ -493,12 +644,14 @@ impl Scenario {
 
 /// The order settings are applied in, by section: the robot first (it resets
 /// the world to its scale), then the trial (a blanked interval is checked
-/// against its length), then the rest; a stable sort keeps the given order
-/// within each.
+/// against its length), then the rest, and a file's `[[change]]`s last (each
+/// changes the world as the rest made it); a stable sort keeps the given
+/// order within each.
 fn section_rank(section: &str) -> u8 {
     match section {
         "robot" => 0,
         "trial" => 1,
+        "change" => 3,
         _ => 2,
     }
 }

@@ -41,6 +41,111 @@ pub struct Figures {
     pub x_s_rmse_mm: f64,
     /// The learner's raw `x_a` alone, last 60 s, mm.
     pub x_a_rmse_mm: f64,
+    /// If the world changed during the trial, how the learner weathered the
+    /// first change (see [`Recovery`]); absent from JSON otherwise.
+    /// The action model's error at the last judgement before it, mm/s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_before_action_rmse_mm_s: f64,
+    /// Its highest error after the change, mm/s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_peak_action_rmse_mm_s: f64,
+    /// Its settled error in the changed world, mm/s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_settled_action_rmse_mm_s: f64,
+    /// How long after the change its error is back within 1.2x of settled, s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub reconvergence_action_s: f64,
+    /// The sensor model's error at the last judgement before the change, mm.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_before_sensor_rmse_mm: f64,
+    /// Its highest error after the change, mm.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_peak_sensor_rmse_mm: f64,
+    /// Its settled error in the changed world, mm.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub change_settled_sensor_rmse_mm: f64,
+    /// How long after the change its error is back within 1.2x of settled, s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub reconvergence_sensor_s: f64,
+    /// How long after the change both models are back: the later of the two, s.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    pub reconvergence_s: f64,
+}
+
+fn nan() -> f64 {
+    f64::NAN
+}
+
+// serde's `skip_serializing_if` passes a reference.
+#[allow(clippy::trivially_copy_pass_by_ref)]
+fn is_nan(v: &f64) -> bool {
+    v.is_nan()
+}
+
+/// The window over which a changed world's settled error is taken: the last
+/// 60 s before the next change or the trial's end.
+pub const SETTLED_WINDOW_S: f64 = 60.0;
+
+/// A model back within this factor of its settled error has re-converged.
+pub const RECONVERGED_WITHIN: f64 = 1.2;
+
+/// How one model's error weathered a change of the world at `at_s`, judged
+/// against the world in force at each moment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Recovery {
+    /// The error at the last judgement at or before the change.
+    pub before: f64,
+    /// The highest error after it.
+    pub peak: f64,
+    /// The mean error over the last [`SETTLED_WINDOW_S`] before the window's
+    /// end (the next change or the trial's end).
+    pub settled: f64,
+    /// From the change until the error, past its peak, is back within
+    /// [`RECONVERGED_WITHIN`] x settled, s (0 if it never left that bound;
+    /// NaN if it is not back by the window's end).
+    pub reconvergence_s: f64,
+}
+
+impl Recovery {
+    /// The recovery of the errors `(t_s, error)` (in time order) from a change
+    /// at `at_s` until `end_s`; `None` without judgements on both sides.
+    pub fn of(errors: &[(f64, f64)], at_s: f64, end_s: f64) -> Option<Self> {
+        let before = errors.iter().rev().find(|e| e.0 <= at_s)?.1;
+        let after: Vec<(f64, f64)> = errors
+            .iter()
+            .copied()
+            .filter(|e| e.0 > at_s && e.0 <= end_s)
+            .collect();
+        let settled_from = (end_s - SETTLED_WINDOW_S).max(at_s);
+        let settled: Vec<f64> = after
+            .iter()
+            .filter(|e| e.0 > settled_from)
+            .map(|e| e.1)
+            .collect();
+        if settled.is_empty() {
+            return None;
+        }
+        let settled = settled.iter().sum::<f64>() / settled.len() as f64;
+        let peak = after.iter().map(|e| e.1).fold(f64::NEG_INFINITY, f64::max);
+        // Back at the first judgement within the bound after the peak (at the
+        // change if it never left the bound; NaN if not back by the end).
+        let bound = RECONVERGED_WITHIN * settled;
+        let peak_at = after.iter().position(|e| e.1 == peak).unwrap_or(0);
+        let back_s = if peak <= bound {
+            at_s
+        } else {
+            after[peak_at..]
+                .iter()
+                .find(|e| e.1 <= bound)
+                .map_or(f64::NAN, |e| e.0)
+        };
+        Some(Self {
+            before,
+            peak,
+            settled,
+            reconvergence_s: back_s - at_s,
+        })
+    }
 }
 
 /// The window over which locations are judged: the last 60 s of a trial.
@@ -59,8 +164,10 @@ fn location_rmse(
     metrics::location_rmse(&pairs).unwrap_or(f64::NAN)
 }
 
-/// The best possible figures for a reference (independent of the trial).
+/// The best possible figures for a reference (independent of the trial), in
+/// the world as it ends.
 pub fn best_possible(reference: &Reference, learner: &ScasmConfig) -> (f64, f64, f64) {
+    let reference = reference.last();
     let s: Vec<(f64, f64)> = reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
     (
         metrics::best_polynomial_rmse(&reference.action, learner.action_degree).unwrap_or(f64::NAN),
@@ -80,7 +187,43 @@ impl Figures {
             action_a0_rmse_mm_s: best.2,
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
-            ..Self::localisation_of(outcome)
+            ..Self::recovery_of(outcome, Self::localisation_of(outcome))
+        }
+    }
+
+    /// `rest` with the recovery figures of the trial's first change of the
+    /// world, if it had one (judged until the next change or the end).
+    fn recovery_of(outcome: &TrialOutcome, rest: Self) -> Self {
+        let Some(&at_s) = outcome.world_changes_s.first() else {
+            return rest;
+        };
+        let end_s = outcome
+            .world_changes_s
+            .get(1)
+            .copied()
+            .unwrap_or(outcome.last.t_s);
+        let series = |get: fn(&crate::reference::Judgement) -> Option<f64>| {
+            let errors: Vec<(f64, f64)> = outcome
+                .over_time
+                .iter()
+                .filter_map(|j| get(j).map(|e| (j.t_s, e)))
+                .collect();
+            Recovery::of(&errors, at_s, end_s)
+        };
+        let (a, s) = (series(|j| j.action_rmse_mm_s), series(|j| j.sensor_rmse_mm));
+        let field =
+            |r: Option<Recovery>, get: fn(&Recovery) -> f64| r.as_ref().map_or(f64::NAN, get);
+        Self {
+            change_before_action_rmse_mm_s: field(a, |r| r.before),
+            change_peak_action_rmse_mm_s: field(a, |r| r.peak),
+            change_settled_action_rmse_mm_s: field(a, |r| r.settled),
+            reconvergence_action_s: field(a, |r| r.reconvergence_s),
+            change_before_sensor_rmse_mm: field(s, |r| r.before),
+            change_peak_sensor_rmse_mm: field(s, |r| r.peak),
+            change_settled_sensor_rmse_mm: field(s, |r| r.settled),
+            reconvergence_sensor_s: field(s, |r| r.reconvergence_s),
+            reconvergence_s: field(a, |r| r.reconvergence_s).max(field(s, |r| r.reconvergence_s)),
+            ..rest
         }
     }
 
@@ -116,6 +259,15 @@ impl Figures {
             localisation_a0_rmse_mm: field(|x| x.localisation_a0_rmse_mm),
             x_s_rmse_mm: field(|x| x.x_s_rmse_mm),
             x_a_rmse_mm: field(|x| x.x_a_rmse_mm),
+            change_before_action_rmse_mm_s: field(|x| x.change_before_action_rmse_mm_s),
+            change_peak_action_rmse_mm_s: field(|x| x.change_peak_action_rmse_mm_s),
+            change_settled_action_rmse_mm_s: field(|x| x.change_settled_action_rmse_mm_s),
+            reconvergence_action_s: field(|x| x.reconvergence_action_s),
+            change_before_sensor_rmse_mm: field(|x| x.change_before_sensor_rmse_mm),
+            change_peak_sensor_rmse_mm: field(|x| x.change_peak_sensor_rmse_mm),
+            change_settled_sensor_rmse_mm: field(|x| x.change_settled_sensor_rmse_mm),
+            reconvergence_sensor_s: field(|x| x.reconvergence_sensor_s),
+            reconvergence_s: field(|x| x.reconvergence_s),
         }
     }
 
@@ -135,6 +287,15 @@ impl Figures {
             localisation_a0_rmse_mm: value,
             x_s_rmse_mm: value,
             x_a_rmse_mm: value,
+            change_before_action_rmse_mm_s: value,
+            change_peak_action_rmse_mm_s: value,
+            change_settled_action_rmse_mm_s: value,
+            reconvergence_action_s: value,
+            change_before_sensor_rmse_mm: value,
+            change_peak_sensor_rmse_mm: value,
+            change_settled_sensor_rmse_mm: value,
+            reconvergence_sensor_s: value,
+            reconvergence_s: value,
         }
     }
 
@@ -339,6 +500,79 @@ impl Aggregate {
     }
 }
 
+/// How the ok trials weathered the first change of the world, as a small
+/// table (`None` if the world did not change): each model's error before the
+/// change, at its peak after it and settled in the new world, and the
+/// re-convergence time, mean +- std over the ok trials (the time over those
+/// that came back, with how many did).
+pub fn describe_recovery(rows: &[(u64, TrialStatus, Figures)], change: &str) -> Option<String> {
+    let ok: Vec<&Figures> = rows.iter().filter(|r| r.1.is_ok()).map(|r| &r.2).collect();
+    if ok
+        .iter()
+        .all(|f| f.change_settled_action_rmse_mm_s.is_nan())
+    {
+        return None;
+    }
+    let stats = |get: &dyn Fn(&Figures) -> f64| {
+        let v: Vec<f64> = ok.iter().map(|f| get(f)).filter(|x| !x.is_nan()).collect();
+        let n = v.len() as f64;
+        let mean = v.iter().sum::<f64>() / n;
+        let std = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n).sqrt();
+        (mean, std, v.len())
+    };
+    let mut out = format!(
+        "the world changes: {change}; error before / peak after / settled (mean +- std), \
+         and re-convergence to within {RECONVERGED_WITHIN}x of settled:\n"
+    );
+    type Get = fn(&Figures) -> f64;
+    let models: [(&str, [Get; 4]); 2] = [
+        (
+            "action (mm/s)",
+            [
+                |f| f.change_before_action_rmse_mm_s,
+                |f| f.change_peak_action_rmse_mm_s,
+                |f| f.change_settled_action_rmse_mm_s,
+                |f| f.reconvergence_action_s,
+            ],
+        ),
+        (
+            "sensor (mm)",
+            [
+                |f| f.change_before_sensor_rmse_mm,
+                |f| f.change_peak_sensor_rmse_mm,
+                |f| f.change_settled_sensor_rmse_mm,
+                |f| f.reconvergence_sensor_s,
+            ],
+        ),
+    ];
+    for (name, [before, peak, settled, back]) in models {
+        let (b, p, s, r) = (stats(&before), stats(&peak), stats(&settled), stats(&back));
+        out.push_str(&format!(
+            "  {name:<14} {:6.1} +- {:<5.1} / {:6.1} +- {:<5.1} / {:6.1} +- {:<5.1}  back after \
+             {:5.0} +- {:.0} s ({} of {} trials)\n",
+            b.0,
+            b.1,
+            p.0,
+            p.1,
+            s.0,
+            s.1,
+            r.0,
+            r.1,
+            r.2,
+            ok.len()
+        ));
+    }
+    let both = stats(&|f| f.reconvergence_s);
+    out.push_str(&format!(
+        "  both models back after {:.0} +- {:.0} s ({} of {} trials)",
+        both.0,
+        both.1,
+        both.2,
+        ok.len()
+    ));
+    Some(out)
+}
+
 /// One trial's row for a summary: its status and figures (NaN figures for a
 /// trial that could not run).
 pub fn trial_row(
@@ -454,6 +688,36 @@ mod tests {
         );
         let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
         assert!(none.mean.action_rmse_mm_s.is_nan());
+    }
+
+    #[test]
+    fn recovery_is_read_off_the_errors_around_the_change() {
+        // Settled at 10 before a change at 100, up to 40 at 130, back to 10
+        // from 200; judged every 10 s to 400.
+        let error = |t: f64| match t {
+            t if t <= 100.0 => 10.0,
+            t if t <= 130.0 => 10.0 + (t - 100.0),
+            t if t < 200.0 => 40.0 - 30.0 * (t - 130.0) / 70.0,
+            _ => 10.0,
+        };
+        let errors: Vec<(f64, f64)> = (1..=40)
+            .map(|k| (10.0 * k as f64, error(10.0 * k as f64)))
+            .collect();
+        let r = Recovery::of(&errors, 100.0, 400.0).expect("judged on both sides");
+        assert_eq!((r.before, r.peak, r.settled), (10.0, 40.0, 10.0));
+        // Within 12 first at 200 s (past the peak: 40 - 30 * 60/70 = 14.3 at 190).
+        assert_eq!(r.reconvergence_s, 100.0);
+        // Never out of the bound: back at once.
+        let flat: Vec<(f64, f64)> = errors.iter().map(|e| (e.0, 10.0)).collect();
+        assert_eq!(
+            Recovery::of(&flat, 100.0, 400.0).map(|r| r.reconvergence_s),
+            Some(0.0)
+        );
+        // At its peak when the window ends (a next change at 130 s): not back.
+        let r = Recovery::of(&errors, 100.0, 130.0).expect("judged");
+        assert!(r.reconvergence_s.is_nan(), "{r:?}");
+        // No judgement before the change: nothing to say.
+        assert_eq!(Recovery::of(&errors[10..], 50.0, 400.0), None);
     }
 
     #[test]

@@ -178,27 +178,36 @@ pub fn shard(runs: Vec<Run>, k: usize, n: usize) -> Vec<Run> {
         .collect()
 }
 
-/// The metrics' column names, in `summary.json`'s terms.
-pub const METRICS: [&str; 7] = [
-    "action_rmse_mm_s",
-    "sensor_rmse_mm",
-    "action_best_rmse_mm_s",
-    "sensor_best_rmse_mm",
-    "action_a0_rmse_mm_s",
-    "consistency",
-    "realtime_factor",
+/// A metric's column name (in `summary.json`'s terms) and its field.
+type Metric = (&'static str, fn(&mut Figures) -> &mut f64);
+
+/// The metrics `sweep.csv` has, in its column order: the final figures, then
+/// how the learner weathered a change of the world (NaN if none).
+pub const METRICS: [Metric; 13] = [
+    ("action_rmse_mm_s", |f| &mut f.action_rmse_mm_s),
+    ("sensor_rmse_mm", |f| &mut f.sensor_rmse_mm),
+    ("action_best_rmse_mm_s", |f| &mut f.action_best_rmse_mm_s),
+    ("sensor_best_rmse_mm", |f| &mut f.sensor_best_rmse_mm),
+    ("action_a0_rmse_mm_s", |f| &mut f.action_a0_rmse_mm_s),
+    ("consistency", |f| &mut f.consistency),
+    ("realtime_factor", |f| &mut f.realtime_factor),
+    ("change_peak_action_rmse_mm_s", |f| {
+        &mut f.change_peak_action_rmse_mm_s
+    }),
+    ("change_settled_action_rmse_mm_s", |f| {
+        &mut f.change_settled_action_rmse_mm_s
+    }),
+    ("reconvergence_action_s", |f| &mut f.reconvergence_action_s),
+    ("change_settled_sensor_rmse_mm", |f| {
+        &mut f.change_settled_sensor_rmse_mm
+    }),
+    ("reconvergence_sensor_s", |f| &mut f.reconvergence_sensor_s),
+    ("reconvergence_s", |f| &mut f.reconvergence_s),
 ];
 
-fn metric_values(f: &Figures) -> [f64; 7] {
-    [
-        f.action_rmse_mm_s,
-        f.sensor_rmse_mm,
-        f.action_best_rmse_mm_s,
-        f.sensor_best_rmse_mm,
-        f.action_a0_rmse_mm_s,
-        f.consistency,
-        f.realtime_factor,
-    ]
+fn metric_values(f: &Figures) -> [f64; METRICS.len()] {
+    let mut f = *f;
+    METRICS.map(|(_, field)| *field(&mut f))
 }
 
 /// A combination's settings and its runs' `(seed, status, figures)`.
@@ -240,7 +249,7 @@ pub struct Results {
 fn header(keys: &[String]) -> String {
     let mut h: Vec<String> = keys.to_vec();
     h.push("seed".into());
-    h.extend(METRICS.iter().map(|m| m.to_string()));
+    h.extend(METRICS.iter().map(|m| m.0.to_string()));
     h.push("status".into());
     h.join(",")
 }
@@ -336,16 +345,10 @@ impl Results {
                 .map(|c| c.parse::<f64>())
                 .collect::<Result<_, _>>()
                 .map_err(|_| bad("bad number"))?;
-            let figures = Figures {
-                action_rmse_mm_s: m[0],
-                sensor_rmse_mm: m[1],
-                action_best_rmse_mm_s: m[2],
-                sensor_best_rmse_mm: m[3],
-                action_a0_rmse_mm_s: m[4],
-                consistency: m[5],
-                realtime_factor: m[6],
-                ..Figures::filled(f64::NAN)
-            };
+            let mut figures = Figures::filled(f64::NAN);
+            for ((_, field), v) in METRICS.iter().zip(m) {
+                *field(&mut figures) = v;
+            }
             results.insert(Row {
                 run: Run { settings, seed },
                 figures,
@@ -389,7 +392,7 @@ impl Results {
         let mut h: Vec<String> = self.keys.clone();
         h.push("runs_ok".into());
         h.push("runs_failed".into());
-        for m in METRICS {
+        for (m, _) in METRICS {
             h.push(format!("{m}_mean"));
             h.push(format!("{m}_std"));
         }

@@ -28,13 +28,16 @@ pub enum TrialError {
     /// The learner could not be set up for this scenario.
     #[error("cannot set up the learner: {0}")]
     LearnerSetup(String),
+    /// The scenario's world changes cannot be made.
+    #[error(transparent)]
+    Setting(#[from] crate::scenario::SettingError),
     /// The trial's world could not be recorded.
     #[error("recording failed: {0}")]
     Recording(String),
 }
 
 /// Settings of one trial.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct TrialConfig {
     /// Trial length, s.
     pub duration_s: f64,
@@ -47,6 +50,10 @@ pub struct TrialConfig {
     /// When the camera sees no beacon (its readings blanked, as when the
     /// beacon is out of view).
     pub blank: Blanks,
+    /// Changes of the world during the trial, in time order: from the first
+    /// frame that starts at or after each time (s), the world's settings
+    /// become these (see [`QuadrupedSim::change_world`]).
+    pub changes: Vec<(f64, SimConfig)>,
 }
 
 /// Up to [`Blanks::MAX`] intervals of a trial, `[start, end)` in s, during
@@ -206,6 +213,8 @@ pub struct TrialRunner {
     sim: QuadrupedSim,
     behaviour: Box<dyn Behaviour>,
     frame: u64,
+    /// The next change of the world to make.
+    next_change: usize,
 }
 
 impl TrialRunner {
@@ -239,6 +248,7 @@ impl TrialRunner {
             sim,
             behaviour,
             frame: 0,
+            next_change: 0,
         })
     }
 
@@ -271,6 +281,13 @@ impl TrialRunner {
     pub fn step_frame(&mut self) -> Result<FrameRecord, TrialError> {
         let dt_s = self.frame_period_s();
         let t_s = self.frame as f64 * dt_s;
+        while let Some(&(at_s, world)) = self.config.changes.get(self.next_change) {
+            if at_s > t_s + 1e-9 {
+                break;
+            }
+            self.sim.change_world(world).map_err(SimError::from)?;
+            self.next_change += 1;
+        }
         let command = self.behaviour.command(t_s);
         self.sim.set_command(command).map_err(SimError::from)?;
         let mut upright = true;
@@ -324,11 +341,12 @@ pub fn record(
     config: TrialConfig,
 ) -> Result<Recording, TrialError> {
     let started = std::time::Instant::now();
+    let seed = config.seed;
     let mut runner = TrialRunner::new(description, sim_config, config)?;
     let frames = runner.record_until(|_| false)?;
     let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
     Ok(Recording {
-        seed: config.seed,
+        seed,
         frames,
         realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
     })
@@ -398,6 +416,8 @@ pub struct TrialOutcome {
     pub fell: bool,
     /// Simulated seconds per wall-clock second of the recording's physics.
     pub realtime_factor: f64,
+    /// When the world changed during the trial, s (see [`Reference::at`]).
+    pub world_changes_s: Vec<f64>,
 }
 
 /// Runs `learner` over a recorded trial (no physics): feeds it every frame,
@@ -428,7 +448,12 @@ pub fn learn(
         Localiser::new(config),
         Localiser::new(config),
     );
-    let true_models = Tabulated::new(&reference.action, &reference.sensor);
+    // The measured models of each world, which may change mid-trial: from
+    // when, and the models.
+    let true_models: Vec<(f64, Tabulated)> = std::iter::once((f64::NEG_INFINITY, reference))
+        .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
+        .map(|(at_s, r)| (at_s, Tabulated::new(&r.action, &r.sensor)))
+        .collect();
     for (k, f) in frames.iter().enumerate() {
         feed(learner, f)?;
         let t_s = f.end_s();
@@ -442,8 +467,10 @@ pub fn learn(
                 (row.x_loc, row.x_loc_std) = (Some(b.x), Some(b.std));
             }
         }
-        row.x_loc_true_mm = with_true
-            .step(&true_models, f.command, f.dt_s, f.obs_px)
+        // The frame's motion is in the world in force over it.
+        let world = true_models.iter().rfind(|(at_s, _)| *at_s <= f.t_s + 1e-9);
+        row.x_loc_true_mm = world
+            .and_then(|(_, models)| with_true.step(models, f.command, f.dt_s, f.obs_px))
             .map(|b| b.x);
         if let Some(baseline) = a0_baseline.as_deref_mut() {
             feed(baseline, f)?;
@@ -469,6 +496,7 @@ pub fn learn(
         sensor_model: learner.sensor_model(),
         fell: recording.fell(),
         realtime_factor: recording.realtime_factor,
+        world_changes_s: reference.changes.iter().map(|c| c.0).collect(),
     })
 }
 
@@ -480,12 +508,7 @@ pub fn run_trial(
     learner: &mut dyn CalibrationLearner,
     reference: &Reference,
 ) -> Result<TrialOutcome, TrialError> {
+    let judge_every_s = config.judge_every_s;
     let recording = record(description, sim_config, config)?;
-    Ok(learn(
-        &recording,
-        learner,
-        None,
-        reference,
-        config.judge_every_s,
-    )?)
+    Ok(learn(&recording, learner, None, reference, judge_every_s)?)
 }
