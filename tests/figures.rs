@@ -210,4 +210,30 @@ fn a_run_writes_the_papers_seven_figures_the_localisation_and_its_page() {
             .extension()
             .is_some_and(|x| x == "tmp")
     }));
+
+    // Had the world changed at 30 s, Fig. 8 and a figure across the change
+    // would mark it, the latter from 100 s before it (here: from the start).
+    let changed: Vec<_> = trials
+        .iter()
+        .cloned()
+        .map(|mut t| {
+            t.world_changes_s = vec![30.0];
+            t
+        })
+        .collect();
+    let figures = report::paper::figures(&report::paper::RunData {
+        trials: &changed,
+        ..data
+    });
+    let stems: Vec<&str> = figures.iter().map(|f| f.stem).collect();
+    assert_eq!(&stems[6..], ["fig8", "change", "localisation"]);
+    for f in &figures[6..8] {
+        let marker = f
+            .chart
+            .series
+            .iter()
+            .find(|s| s.label == "the world changes")
+            .expect("the change is marked");
+        assert!(marker.points.iter().all(|p| p.0 == 30.0), "{}", f.stem);
+    }
 }

@@ -172,7 +172,8 @@ pub struct Job<'a> {
 }
 
 /// What a recording depends on: the robot, world and camera (the reference
-/// key), the behaviour (set from the reference), the trial's length and seed.
+/// key), the behaviour (set from the reference), the trial's length, its
+/// blanked intervals, its changes of the world, and its seed.
 /// Jobs with the same key can share one recording, whatever their learners.
 pub fn world_key(scenario: &Scenario, seed: u64) -> String {
     format!(

@@ -41,9 +41,10 @@ pub struct Figures {
     pub x_s_rmse_mm: f64,
     /// The learner's raw `x_a` alone, last 60 s, mm.
     pub x_a_rmse_mm: f64,
-    /// If the world changed during the trial, how the learner weathered the
-    /// first change (see [`Recovery`]); absent from JSON otherwise.
-    /// The action model's error at the last judgement before it, mm/s.
+    /// The fields from here on say how the learner weathered the world's
+    /// first change during the trial (see [`Recovery`]); NaN, and absent
+    /// from JSON, if the world did not change. This one: the action model's
+    /// error at the last judgement before the change, mm/s.
     #[serde(default = "nan", skip_serializing_if = "is_nan")]
     pub change_before_action_rmse_mm_s: f64,
     /// Its highest error after the change, mm/s.
