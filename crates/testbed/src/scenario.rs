@@ -241,10 +241,7 @@ impl Scenario {
         ordered.sort_by_key(|(section, _)| section_rank(section));
         for (section, entries) in ordered {
             if section == "change" {
-                changed.add_changes(entries).map_err(|e| match e {
-                    SettingError::File { reason, .. } => file_error(reason),
-                    other => other,
-                })?;
+                changed.add_changes(file, entries)?;
                 continue;
             }
             let toml::Value::Table(entries) = entries else {
@@ -285,9 +282,9 @@ impl Scenario {
 
     /// Adds a scenario file's `[[change]]` entries (an array of tables with
     /// `at_s`, `key` and `value`) after the changes already scheduled.
-    fn add_changes(&mut self, entries: &toml::Value) -> Result<(), SettingError> {
+    fn add_changes(&mut self, file: &str, entries: &toml::Value) -> Result<(), SettingError> {
         let bad = |reason: String| SettingError::File {
-            file: String::new(),
+            file: file.into(),
             reason,
         };
         let toml::Value::Array(list) = entries else {
