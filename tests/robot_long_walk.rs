@@ -6,7 +6,7 @@
 //! The behaviour is driven by ideal readings computed from the true distance: this
 //! is a test of the robot, not of a learner, and no learner is involved.
 
-use quadsim::{QuadrupedSim, RobotFile, RobotScale, SimConfig};
+use quadsim::{QuadrupedSim, RobotFile, RobotScale};
 use testbed::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
 use testbed::seeds::{self, Stream};
 
@@ -22,9 +22,10 @@ struct Walk {
 }
 
 fn walk(robot: &str, seconds: f64, seed: u64) -> Walk {
-    let description = RobotFile::shipped(robot).expect("robot").description;
-    let scale = RobotScale::of(&description);
-    let mut sim = QuadrupedSim::new(&description, SimConfig::for_robot(&description)).expect("sim");
+    let file = RobotFile::shipped(robot).expect("robot");
+    let description = &file.description;
+    let scale = RobotScale::of(description);
+    let mut sim = QuadrupedSim::new(description, file.sim_config()).expect("sim");
     // The beacon scales with the robot, so the turning readings do not.
     let k_px_m = K_PX_M * scale.length;
     let mut behaviour = TrainingBehaviour::new(

@@ -14,7 +14,19 @@
 //! parent = "trunk"                 # the link it is fixed to
 //! xyz = [0.2, 0.0, 0.03]           # m, in the parent's frame
 //! rpy = [0.0, 0.0, 0.0]            # rad (optional); optical axis +x, image up +z
+//! [gait]                           # optional: the robot's own gait (see below)
+//! v_max_mm_s = 520.0
+//! [gait.fast_forwards]
+//! period_s = 0.45
 //! ```
+//!
+//! Without `[gait]`, a robot walks the ERS-7's gait scaled to its size
+//! ([`crate::RobotScale`]). `[gait]` replaces any of the scaled values, in the
+//! robot's own units: `v_max_mm_s` and `v_min_mm_s` (the commands Eq. 1's fast
+//! walks stand for), and in `[gait.idle]`, `[gait.fast_forwards]` and
+//! `[gait.fast_backwards]` any field of [`GaitParams`] (`step_length_m`,
+//! `step_height_m`, `period_s`, `body_height_m`, `stance_width_m`,
+//! `duty_factor`, `foot_offset_m`).
 
 use std::path::{Path, PathBuf};
 
@@ -22,6 +34,8 @@ use serde::Deserialize;
 
 use crate::description::{CameraMount, RobotDescription, RobotMap};
 use crate::error::RobotError;
+use crate::gait::{GaitParams, GaitTable};
+use crate::sim::SimConfig;
 
 /// The shipped robots: name, robot file, URDF file name and URDF text.
 const SHIPPED: [(&str, &str, &str); 2] = [
@@ -44,6 +58,8 @@ struct FileToml {
     urdf: PathBuf,
     legs: LegsToml,
     camera: CameraToml,
+    #[serde(default)]
+    gait: GaitOverrides,
 }
 
 #[derive(Debug, Deserialize)]
@@ -64,6 +80,144 @@ struct CameraToml {
     rpy: [f64; 3],
 }
 
+/// A robot file's `[gait]`: values that replace the scaled ERS-7 gait's, in
+/// the robot's own units (absent: keep the scaled value).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaitOverrides {
+    /// Eq. 1's `v_max`, mm/s (> 0).
+    pub v_max_mm_s: Option<f64>,
+    /// Eq. 1's `v_min`, mm/s (< 0).
+    pub v_min_mm_s: Option<f64>,
+    /// `p_i`'s fields.
+    #[serde(default)]
+    pub idle: ParamOverrides,
+    /// `p_f`'s fields.
+    #[serde(default)]
+    pub fast_forwards: ParamOverrides,
+    /// `p_b`'s fields.
+    #[serde(default)]
+    pub fast_backwards: ParamOverrides,
+}
+
+/// Replacements for some of a [`GaitParams`]' fields.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+#[allow(missing_docs)] // each is the `GaitParams` field of the same name
+pub struct ParamOverrides {
+    pub step_length_m: Option<f64>,
+    pub step_height_m: Option<f64>,
+    pub period_s: Option<f64>,
+    pub body_height_m: Option<f64>,
+    pub stance_width_m: Option<f64>,
+    pub duty_factor: Option<f64>,
+    pub foot_offset_m: Option<f64>,
+}
+
+impl ParamOverrides {
+    fn apply(&self, p: &mut GaitParams) {
+        let set = |slot: &mut f64, value: Option<f64>| *slot = value.unwrap_or(*slot);
+        set(&mut p.step_length_m, self.step_length_m);
+        set(&mut p.step_height_m, self.step_height_m);
+        set(&mut p.period_s, self.period_s);
+        set(&mut p.body_height_m, self.body_height_m);
+        set(&mut p.stance_width_m, self.stance_width_m);
+        set(&mut p.duty_factor, self.duty_factor);
+        set(&mut p.foot_offset_m, self.foot_offset_m);
+    }
+}
+
+impl GaitOverrides {
+    /// `table` with these values in place.
+    pub fn apply(&self, table: GaitTable) -> GaitTable {
+        let mut t = table;
+        t.v_max_mm_s = self.v_max_mm_s.unwrap_or(t.v_max_mm_s);
+        t.v_min_mm_s = self.v_min_mm_s.unwrap_or(t.v_min_mm_s);
+        self.idle.apply(&mut t.idle);
+        self.fast_forwards.apply(&mut t.fast_forwards);
+        self.fast_backwards.apply(&mut t.fast_backwards);
+        t
+    }
+}
+
+/// One check of a gait's value: its key, the value, whether it is allowed,
+/// and what to say if not.
+type Rule = (String, f64, fn(f64) -> bool, &'static str);
+
+/// What is wrong with a gait, as `(key, reason)`: every value finite, the
+/// periods, heights and `v_max` positive, `v_min` negative, the duty factors
+/// in (0, 1), the step heights not negative, and the fast walks' steps
+/// forwards and backwards.
+fn check_gait(t: &GaitTable) -> Result<(), (String, &'static str)> {
+    const ANY: fn(f64) -> bool = |_| true;
+    const POSITIVE: fn(f64) -> bool = |v| v > 0.0;
+    const NEGATIVE: fn(f64) -> bool = |v| v < 0.0;
+    let mut rules: Vec<Rule> = vec![
+        (
+            "v_max_mm_s".into(),
+            t.v_max_mm_s,
+            POSITIVE,
+            "must be positive",
+        ),
+        (
+            "v_min_mm_s".into(),
+            t.v_min_mm_s,
+            NEGATIVE,
+            "must be negative",
+        ),
+    ];
+    for (walk, p, step, step_reason) in [
+        ("idle", &t.idle, ANY, ""),
+        (
+            "fast_forwards",
+            &t.fast_forwards,
+            POSITIVE,
+            "must be positive (a step forwards)",
+        ),
+        (
+            "fast_backwards",
+            &t.fast_backwards,
+            NEGATIVE,
+            "must be negative (a step backwards)",
+        ),
+    ] {
+        let key = |field: &str| format!("{walk}.{field}");
+        rules.extend([
+            (key("step_length_m"), p.step_length_m, step, step_reason),
+            (key("period_s"), p.period_s, POSITIVE, "must be positive"),
+            (
+                key("body_height_m"),
+                p.body_height_m,
+                POSITIVE,
+                "must be positive",
+            ),
+            (
+                key("step_height_m"),
+                p.step_height_m,
+                |v| v >= 0.0,
+                "must not be negative",
+            ),
+            (
+                key("duty_factor"),
+                p.duty_factor,
+                |v| v > 0.0 && v < 1.0,
+                "must be in (0, 1)",
+            ),
+            (key("stance_width_m"), p.stance_width_m, ANY, ""),
+            (key("foot_offset_m"), p.foot_offset_m, ANY, ""),
+        ]);
+    }
+    for (key, value, ok, reason) in rules {
+        if !value.is_finite() {
+            return Err((key, "must be a finite number"));
+        }
+        if !ok(value) {
+            return Err((key, reason));
+        }
+    }
+    Ok(())
+}
+
 /// A robot read from a robot file and its URDF.
 #[derive(Debug, Clone)]
 pub struct RobotFile {
@@ -77,6 +231,8 @@ pub struct RobotFile {
     pub urdf_text: String,
     /// The checked robot.
     pub description: RobotDescription,
+    /// The file's `[gait]`.
+    pub gait: GaitOverrides,
 }
 
 impl RobotFile {
@@ -157,13 +313,37 @@ impl RobotFile {
                 reason: e.to_string(),
             }
         })?;
-        Ok(Self {
+        Self {
             name: file.name,
             path,
             text: text.to_string(),
             urdf_text,
             description,
-        })
+            gait: file.gait,
+        }
+        .checked(label)
+    }
+
+    /// The robot's settings: the defaults scaled to its size
+    /// ([`SimConfig::for_robot`]), then its `[gait]`.
+    pub fn sim_config(&self) -> SimConfig {
+        let mut config = SimConfig::for_robot(&self.description);
+        config.walk.gait = self.gait.apply(config.walk.gait);
+        config
+    }
+
+    /// `self` if its gait is valid and within the legs' reach and joint limits.
+    fn checked(self, label: &str) -> Result<Self, RobotError> {
+        let bad = |reason: String| RobotError::RobotFile {
+            file: label.to_string(),
+            reason,
+        };
+        let config = self.sim_config();
+        check_gait(&config.walk.gait)
+            .map_err(|(key, reason)| bad(format!("gait.{key} {reason}")))?;
+        crate::walk::WalkEngine::check_feasible(&config.walk, &self.description.legs)
+            .map_err(|e| bad(format!("its gait: {e}")))?;
+        Ok(self)
     }
 }
 

@@ -105,11 +105,60 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
         ("\"hl_knee\"", "\"hl_kne\"", "hl_kne"),
         ("parent = \"head\"", "parent = \"antenna\"", "antenna"),
         ("xyz = [0.041, 0.0, 0.005]", "xyz = [0.041, 0.0]", "xyz"),
+        // The [gait] section: unknown keys, impossible values, out of reach.
+        ("[camera]", "[gait]\nstride = 1.0\n[camera]", "stride"),
+        ("[camera]", "[gait.trot]\nperiod_s = 0.4\n[camera]", "trot"),
+        (
+            "[camera]",
+            "[gait]\nv_min_mm_s = 100.0\n[camera]",
+            "gait.v_min_mm_s",
+        ),
+        (
+            "[camera]",
+            "[gait.idle]\nperiod_s = 0.0\n[camera]",
+            "gait.idle.period_s",
+        ),
+        (
+            "[camera]",
+            "[gait.fast_forwards]\nduty_factor = 1.5\n[camera]",
+            "gait.fast_forwards.duty_factor",
+        ),
+        (
+            "[camera]",
+            "[gait.fast_backwards]\nstep_length_m = 0.05\n[camera]",
+            "gait.fast_backwards.step_length_m",
+        ),
+        (
+            "[camera]",
+            "[gait.fast_forwards]\nbody_height_m = 0.5\n[camera]",
+            "cannot walk the gait",
+        ),
     ] {
         assert!(local.contains(from), "the edit `{from}` applies");
         expect_error(&local.replace(from, to), &[needle]);
     }
     assert!(RobotFile::load("no-such-robot").is_err());
+}
+
+#[test]
+fn a_robot_files_gait_replaces_the_scaled_gait() {
+    let dir = std::env::temp_dir().join(format!("quadsim-gait-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    write(&dir, "robot.urdf", ERS7_URDF);
+    let local = ERS7_FILE.replace("../ers7.urdf", "robot.urdf");
+    let text = local.replace(
+        "[camera]",
+        "[gait]\nv_max_mm_s = 400.0\n[gait.fast_forwards]\nperiod_s = 0.35\n[camera]",
+    );
+    let file = RobotFile::from_file(&write(&dir, "robot.toml", &text)).expect("valid");
+    let (got, base) = (file.sim_config(), SimConfig::default());
+    assert_eq!(got.walk.gait.v_max_mm_s, 400.0);
+    assert_eq!(got.walk.gait.fast_forwards.period_s, 0.35);
+    // Everything else is the scaled default (the ERS-7's own, unscaled).
+    let mut expected = base;
+    expected.walk.gait.v_max_mm_s = 400.0;
+    expected.walk.gait.fast_forwards.period_s = 0.35;
+    assert_eq!(got, expected);
 }
 
 #[test]
@@ -148,9 +197,10 @@ fn with_zero_masses(urdf: &str) -> String {
 /// `seconds` at `fraction` of the robot's top command (its scaled 300 mm/s):
 /// whether it stayed upright, and its mean speed towards the beacon, as a
 /// fraction of the top command.
-fn walk(d: &RobotDescription, fraction: f64, seconds: f64) -> (bool, f64) {
+fn walk(robot: &RobotFile, fraction: f64, seconds: f64) -> (bool, f64) {
+    let d = &robot.description;
     let scale = RobotScale::of(d);
-    let mut config = SimConfig::for_robot(d);
+    let mut config = robot.sim_config();
     // Walking away starts near the beacon, walking towards it far away.
     config.start_distance_m = if fraction < 0.0 { 1.2 } else { 3.6 } * scale.length;
     let mut sim = QuadrupedSim::new(d, config).expect("sim");
@@ -169,7 +219,7 @@ fn walk(d: &RobotDescription, fraction: f64, seconds: f64) -> (bool, f64) {
 #[test]
 fn every_shipped_robot_walks_forwards_backwards_and_in_place() {
     for name in RobotFile::shipped_names() {
-        let d = RobotFile::shipped(name).expect("robot").description;
+        let d = RobotFile::shipped(name).expect("robot");
         let (upright, forwards) = walk(&d, 1.0, 8.0);
         assert!(upright && forwards > 0.5, "{name} forwards: {forwards:.2}");
         let (upright, backwards) = walk(&d, -1.0, 8.0);

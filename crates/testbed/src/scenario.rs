@@ -405,12 +405,8 @@ impl Scenario {
                     file: value.into(),
                     reason: e.to_string(),
                 })?;
-                let sim = SimConfig::for_robot(&robot.description);
-                quadsim::walk::WalkEngine::check_feasible(&sim.walk, &robot.description.legs)
-                    .map_err(|e| SettingError::File {
-                        file: value.into(),
-                        reason: e.to_string(),
-                    })?;
+                // Its gait was checked within the legs' reach as it was read.
+                let sim = robot.sim_config();
                 // The paper's experiment at the robot's scale: its commands,
                 // trial length and the learner's time constants scale too.
                 let scale = RobotScale::of(&robot.description);
