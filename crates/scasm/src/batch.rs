@@ -22,9 +22,16 @@
 //! re-estimating it by joint maximum a posteriori collapses it to zero (the
 //! path is fitted to make its residuals small), and by EM with white noise it
 //! grows until the path follows the readings' correlated head bob; both made
-//! worse models on the development seeds. Everything starts from an online
-//! SCASM learner fed the same events (by default `scasm-eiv`), whose models the
-//! batch learner reports until its first solve.
+//! worse models on the development seeds. The first solve starts from an
+//! online SCASM learner fed the same events (by default `scasm-eiv`), whose
+//! models the batch learner reports until then. Every later solve starts twice,
+//! from the online learner's path and models and from the previous solution
+//! carried forward by its own A, and keeps whichever ends with the lower cost
+//! (the negative log likelihood, which no choice of units changes): an online
+//! learner in a bad spell then no longer drags a good solution with it. The
+//! solution is then put in the previous one's units (the affine map that best
+//! takes its path onto the previous path), so that the learner's units do not
+//! jump at every solve: the likelihood is blind to them, a localiser is not.
 //!
 //! Cost: each solve is O(N) in the frames N it covers, for a fixed number of
 //! iterations. By default (no forgetting) N is the whole trial, so solving
@@ -177,6 +184,42 @@ struct Solution {
     x_a: f64,
 }
 
+/// Where a solve starts: a location at every frame boundary so far (the first
+/// at 0) and an action model.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+struct Start {
+    path: Vec<f64>,
+    action: Polynomial,
+}
+
+impl Start {
+    /// The online learner's dead reckoning and its action model.
+    fn online(frames: &[FrameData], online: &Scasm) -> Option<Self> {
+        online.sensor_model()?;
+        Some(Self {
+            path: core::iter::once(0.0)
+                .chain(frames.iter().map(|f| f.x_online))
+                .collect(),
+            action: online.action_model()?,
+        })
+    }
+
+    /// This (a solved path) carried over frames it has not seen yet by its
+    /// own action model.
+    fn extended(&self, frames: &[FrameData]) -> Self {
+        let mut path = self.path.clone();
+        for f in frames.iter().skip(path.len() - 1) {
+            let last = path.last().copied().unwrap_or(0.0);
+            path.push(last + self.action.eval(f.command) * f.dt_s);
+        }
+        Self {
+            path,
+            action: self.action,
+        }
+    }
+}
+
 /// The batch maximum-likelihood learner (see the module's documentation).
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -186,6 +229,8 @@ pub struct BatchMl {
     frames: Vec<FrameData>,
     next_solve_s: f64,
     solution: Option<Solution>,
+    /// The latest solution's path and action model, to start the next from.
+    solved: Option<Start>,
     x_s: Option<f64>,
 }
 
@@ -206,6 +251,7 @@ impl BatchMl {
             frames: Vec::new(),
             next_solve_s: c.solve_every_s,
             solution: None,
+            solved: None,
             x_s: None,
         }
     }
@@ -219,8 +265,25 @@ impl BatchMl {
     /// at the end of a trial; the learner also solves every `solve_every_s`).
     pub fn solve_now(&mut self) {
         let c = self.params.config();
-        if let Some(s) = solve(&self.frames, &c, &self.online) {
-            self.solution = Some(s);
+        let starts = [
+            Start::online(&self.frames, &self.online),
+            self.solved.as_ref().map(|s| s.extended(&self.frames)),
+        ];
+        let best = starts
+            .iter()
+            .flatten()
+            .filter_map(|start| solve(&self.frames, &c, start))
+            .min_by(|a, b| a.cost.total_cmp(&b.cost));
+        if let Some(mut s) = best {
+            if let Some((scale, offset)) = self
+                .solved
+                .as_ref()
+                .and_then(|previous| units_map(&s.start.path, &previous.path))
+            {
+                s.rescale(scale, offset);
+            }
+            self.solution = Some(s.solution);
+            self.solved = Some(s.start);
         }
     }
 }
@@ -348,6 +411,24 @@ impl Problem<'_> {
             v = v * z + m.g[i];
         }
         (v, d / self.half_width)
+    }
+
+    /// The process precisions (steady, changing over): the process noise is a
+    /// fraction of the typical speed per frame under `m`'s A, larger while
+    /// the gait changes over.
+    fn process_precisions(&self, m: &Models, config: &BatchMlConfig) -> Precisions {
+        let mean_square = self
+            .frames
+            .iter()
+            .enumerate()
+            .map(|(j, f)| (f.dt_s * self.velocity(m, j)).powi(2))
+            .sum::<f64>()
+            / self.frames.len().max(1) as f64;
+        let steady = (config.process_noise * mean_square.sqrt()).max(1e-9);
+        [
+            1.0 / (steady * steady),
+            1.0 / (steady * config.transient_noise).powi(2),
+        ]
     }
 
     /// Weighted sum of squares: process residuals at `process_precision`,
@@ -578,10 +659,52 @@ fn reading_variance(frames: &[FrameData]) -> Option<f64> {
 
 /// Solves the whole fit from the online learner's state, or `None` if it has
 /// no models yet or the fit fails.
-fn solve(all_frames: &[FrameData], config: &BatchMlConfig, online: &Scasm) -> Option<Solution> {
+/// A solve's outcome: the solution, its path and A (to start the next solve
+/// from), and its cost.
+struct Solved {
+    solution: Solution,
+    start: Start,
+    cost: f64,
+}
+
+impl Solved {
+    /// The same solution in units `scale x + offset`.
+    fn rescale(&mut self, scale: f64, offset: f64) {
+        let s = &mut self.solution;
+        s.action = s.action.rescaled(scale, 0.0);
+        s.sensor = s.sensor.rescaled(scale, offset);
+        s.x_a = scale * s.x_a + offset;
+        self.start.action = s.action;
+        for x in &mut self.start.path {
+            *x = scale * *x + offset;
+        }
+    }
+}
+
+/// The affine map `(scale, offset)` that best takes `path` onto `previous`
+/// where both have locations (least squares); `None` if it is not defined.
+fn units_map(path: &[f64], previous: &[f64]) -> Option<(f64, f64)> {
+    let n = path.len().min(previous.len());
+    if n < 2 {
+        return None;
+    }
+    let k = n as f64;
+    let (mx, my) = (
+        path[..n].iter().sum::<f64>() / k,
+        previous[..n].iter().sum::<f64>() / k,
+    );
+    let (sxx, sxy) = path[..n]
+        .iter()
+        .zip(&previous[..n])
+        .fold((0.0, 0.0), |(sxx, sxy), (x, y)| {
+            (sxx + (x - mx) * (x - mx), sxy + (x - mx) * (y - my))
+        });
+    let scale = sxy / sxx;
+    (sxx > 0.0 && scale.is_finite() && scale != 0.0).then_some((scale, my - scale * mx))
+}
+
+fn solve(all_frames: &[FrameData], config: &BatchMlConfig, start: &Start) -> Option<Solved> {
     let oc = config.online;
-    let a_online = online.action_model()?;
-    online.sensor_model()?;
     // Forgetting: frame j of n weighs gamma^(n-1-j); drop the negligible ones.
     let gamma = config.gamma;
     let keep = if gamma < 1.0 {
@@ -598,15 +721,10 @@ fn solve(all_frames: &[FrameData], config: &BatchMlConfig, online: &Scasm) -> Op
     let weights: Vec<f64> = (0..n)
         .map(|j| libm::pow(gamma, (n - 1 - j) as f64))
         .collect();
-    // The starting path: the online learner's x_a at every frame boundary.
-    let start_x = if first > 0 {
-        all_frames[first - 1].x_online
-    } else {
-        0.0
-    };
-    let mut path: Vec<f64> = core::iter::once(start_x)
-        .chain(frames.iter().map(|f| f.x_online))
-        .collect();
+    let mut path: Vec<f64> = start.path.get(first..)?.to_vec();
+    if path.len() != n + 1 {
+        return None;
+    }
     let (lo, hi) = path
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
@@ -645,7 +763,8 @@ fn solve(all_frames: &[FrameData], config: &BatchMlConfig, online: &Scasm) -> Op
         g: [0.0; MAX_REGRESSORS + 1],
     };
     let mut p = 1.0;
-    for (i, c) in a_online
+    for (i, c) in start
+        .action
         .coeffs()
         .iter()
         .enumerate()
@@ -655,22 +774,7 @@ fn solve(all_frames: &[FrameData], config: &BatchMlConfig, online: &Scasm) -> Op
         p *= oc.command_scale;
     }
     m.g = initial_forward_model(&problem, &path)?;
-    // The process noise: a fraction of the typical speed per frame, larger
-    // while the gait changes over.
-    let typical_step = {
-        let (mut sum, mut w) = (0.0, 0.0);
-        for (j, f) in frames.iter().enumerate() {
-            let step = f.dt_s * problem.velocity(&m, j);
-            sum += step * step;
-            w += 1.0;
-        }
-        (sum / w).sqrt()
-    };
-    let steady = (config.process_noise * typical_step).max(1e-9);
-    let precision: Precisions = [
-        1.0 / (steady * steady),
-        1.0 / (steady * config.transient_noise).powi(2),
-    ];
+    let precision = problem.process_precisions(&m, config);
     let mut cost = problem.cost(&path, &m, &precision);
     let mut lambda = 1e-3;
     for _ in 0..config.iterations {
@@ -706,12 +810,24 @@ fn solve(all_frames: &[FrameData], config: &BatchMlConfig, online: &Scasm) -> Op
         }
     }
     let sensor = sensor_fit.polynomial()?;
+    // The cost at the process noise of the solved models' own typical speed,
+    // which makes it the same whatever the units of the start.
+    let cost = problem.cost(&path, &m, &problem.process_precisions(&m, config));
     // Dead reckoning carries on from the solved path's end.
     let x_a = *path.last()?;
-    Some(Solution {
-        action,
-        sensor,
-        x_a,
+    let mut full_path = start.path[..first].to_vec();
+    full_path.extend_from_slice(&path);
+    Some(Solved {
+        solution: Solution {
+            action,
+            sensor,
+            x_a,
+        },
+        start: Start {
+            path: full_path,
+            action,
+        },
+        cost,
     })
 }
 

@@ -54,6 +54,16 @@ impl Polynomial {
         &self.coeffs[..usize::from(self.len)]
     }
 
+    /// `scale p(x) + offset`: the same model with its output in other units.
+    pub fn rescaled(&self, scale: f64, offset: f64) -> Self {
+        let mut out = *self;
+        for c in out.coeffs.iter_mut().take(usize::from(self.len)) {
+            *c *= scale;
+        }
+        out.coeffs[0] += offset;
+        out
+    }
+
     /// The degree (number of coefficients minus one).
     pub fn degree(&self) -> usize {
         usize::from(self.len) - 1
@@ -118,6 +128,16 @@ impl Polynomial {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn rescaled_maps_the_output() {
+        let p = Polynomial::new(&[1.0, -2.0, 0.5]).expect("poly");
+        let q = p.rescaled(3.0, 10.0);
+        for x in [-2.0, 0.0, 1.5, 7.0] {
+            assert!((q.eval(x) - (3.0 * p.eval(x) + 10.0)).abs() < 1e-12);
+        }
+        assert_eq!(q.degree(), p.degree());
+    }
+
     use super::*;
 
     #[test]

@@ -11,7 +11,7 @@ use rand::Rng;
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
 use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
-use crate::localiser::{Learned, Localiser, LocaliserConfig, Tabulated};
+use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
 
@@ -444,9 +444,9 @@ pub fn learn(
         ..LocaliserConfig::default()
     };
     let (mut with_learned, mut with_true, mut with_a0) = (
+        Following::new(config),
         Localiser::new(config),
-        Localiser::new(config),
-        Localiser::new(config),
+        Following::new(config),
     );
     // The measured models of each world, which may change mid-trial: from
     // when, and the models.
@@ -463,7 +463,7 @@ pub fn learn(
         let mut row = TraceRow::of(f, learner);
         if let (Some(action), Some(sensor)) = (learner.action_model(), learner.sensor_model()) {
             let models = Learned { action, sensor };
-            if let Some(b) = with_learned.step(&models, f.command, f.dt_s, f.obs_px) {
+            if let Some(b) = with_learned.step(models, f.command, f.dt_s, f.obs_px) {
                 (row.x_loc, row.x_loc_std) = (Some(b.x), Some(b.std));
             }
         }
@@ -480,7 +480,7 @@ pub fn learn(
                     sensor,
                 };
                 row.x_loc_a0 = with_a0
-                    .step(&models, f.command, f.dt_s, f.obs_px)
+                    .step(models, f.command, f.dt_s, f.obs_px)
                     .map(|b| b.x);
             }
         }
