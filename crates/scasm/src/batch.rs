@@ -688,19 +688,13 @@ fn units_map(path: &[f64], previous: &[f64]) -> Option<(f64, f64)> {
     if n < 2 {
         return None;
     }
-    let k = n as f64;
-    let (mx, my) = (
-        path[..n].iter().sum::<f64>() / k,
-        previous[..n].iter().sum::<f64>() / k,
-    );
-    let (sxx, sxy) = path[..n]
-        .iter()
-        .zip(&previous[..n])
-        .fold((0.0, 0.0), |(sxx, sxy), (x, y)| {
-            (sxx + (x - mx) * (x - mx), sxy + (x - mx) * (y - my))
-        });
-    let scale = sxy / sxx;
-    (sxx > 0.0 && scale.is_finite() && scale != 0.0).then_some((scale, my - scale * mx))
+    let mut fit = PolynomialFit::new(1, 1.0);
+    for (&x, &y) in path[..n].iter().zip(&previous[..n]) {
+        fit.add(x, y);
+    }
+    let line = fit.polynomial()?;
+    let (offset, scale) = (line.coeffs()[0], line.coeffs()[1]);
+    (scale.is_finite() && offset.is_finite() && scale != 0.0).then_some((scale, offset))
 }
 
 fn solve(all_frames: &[FrameData], config: &BatchMlConfig, start: &Start) -> Option<Solved> {

@@ -255,15 +255,9 @@ fn gauge_map(old: &Polynomial, new: &Polynomial, (lo, hi): (f64, f64)) -> Option
         .map(|k| lo + (hi - lo) * f64::from(k) / f64::from(POINTS - 1))
         .map(|o| (old.eval(o), new.eval(o)))
         .collect();
-    let n = f64::from(POINTS);
-    let (mx, my) = pairs
-        .iter()
-        .fold((0.0, 0.0), |(sx, sy), (x, y)| (sx + x / n, sy + y / n));
-    let (sxx, sxy) = pairs.iter().fold((0.0, 0.0), |(sxx, sxy), (x, y)| {
-        (sxx + (x - mx) * (x - mx), sxy + (x - mx) * (y - my))
-    });
-    let scale = sxy / sxx;
-    (sxx > 0.0 && scale.is_finite() && scale != 0.0).then_some((scale, my - scale * mx))
+    let line = crate::metrics::best_polynomial(&pairs, 1)?;
+    let (offset, scale) = (line.coeffs()[0], line.coeffs()[1]);
+    (scale.is_finite() && offset.is_finite() && scale != 0.0).then_some((scale, offset))
 }
 
 #[cfg(test)]
