@@ -38,6 +38,8 @@ struct Args {
     /// Results directory (default: runs/replay-<unix time>).
     #[arg(long)]
     out: Option<PathBuf>,
+    #[command(flatten)]
+    rerun: scasm_testbed::RerunArgs,
 }
 
 /// The scenario a dataset was recorded in, with `args`' learner settings on top.
@@ -64,6 +66,7 @@ fn main() -> Result<()> {
     if scasm_testbed::list_learners_if_asked(args.learner.as_deref()) {
         return Ok(());
     }
+    args.rerun.check()?;
     let paths = dataset::find(&args.datasets)?;
     let datasets: Vec<Dataset> = paths
         .iter()
@@ -123,6 +126,22 @@ fn main() -> Result<()> {
     if let Some(text) = summary::describe_recovery(rows, &scenarios[0].changes_text()) {
         println!("\n{text}");
     }
+    let trials: Vec<scasm_testbed::RunTrial> = datasets
+        .iter()
+        .zip(&scenarios)
+        .zip(&results)
+        .zip(rows)
+        .filter_map(|(((d, scenario), (_, r)), row)| {
+            Some(scasm_testbed::RunTrial {
+                scenario,
+                models: &d.meta.reference,
+                recording: &d.recording,
+                outcome: r.as_ref().ok()?,
+                row,
+            })
+        })
+        .collect();
+    args.rerun.write(&trials)?;
     println!(
         "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads; results in {}",
         rows.len(),

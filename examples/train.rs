@@ -15,7 +15,7 @@ use std::sync::Mutex;
 use anyhow::{Result, bail, ensure};
 use clap::Parser;
 use report::page::Page;
-use scasm_testbed::{ScenarioArgs, TrialArgs};
+use scasm_testbed::{RerunArgs, RunTrial, ScenarioArgs, TrialArgs};
 use testbed::dataset::{self, DatasetMeta};
 use testbed::demos::{Demos, run_demos};
 use testbed::experiment;
@@ -39,6 +39,8 @@ struct Args {
     cache: PathBuf,
     #[command(flatten)]
     scenario: ScenarioArgs,
+    #[command(flatten)]
+    rerun: RerunArgs,
 }
 
 /// A trial's directory: its dataset and its learner's files.
@@ -77,6 +79,7 @@ fn main() -> Result<()> {
     if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref()) {
         return Ok(());
     }
+    args.rerun.check()?;
     let scenario = args.scenario.scenario_with(&args.trials.settings())?;
     let seeds: Vec<u64> = (scenario.seeds.0..scenario.seeds.1).collect();
     let out = scasm_testbed::create_run_dir(args.out.as_deref(), "train")?;
@@ -153,6 +156,22 @@ fn main() -> Result<()> {
     if let Some(text) = summary::describe_recovery(rows, &scenario.changes_text()) {
         println!("\n{text}");
     }
+
+    let trials: Vec<RunTrial> = results
+        .iter()
+        .zip(rows)
+        .filter_map(|((_, r), row)| {
+            let (recording, outcome) = r.as_ref().ok()?;
+            Some(RunTrial {
+                scenario: &scenario,
+                models: &models,
+                recording,
+                outcome,
+                row,
+            })
+        })
+        .collect();
+    args.rerun.write(&trials)?;
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;

@@ -4,7 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
+use testbed::reference::MeasuredModels;
 use testbed::scenario::{Scenario, SettingError};
+use testbed::summary::{Figures, TrialStatus};
+use testbed::trial::{Recording, TrialOutcome};
 
 /// The flags that choose a scenario: robot, scenario file, and settings.
 #[derive(Debug, Clone, clap::Args)]
@@ -86,6 +89,104 @@ impl TrialArgs {
         }
         s
     }
+}
+
+/// The flags that write a run's trial to a Rerun recording.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RerunArgs {
+    /// Write a trial to this Rerun recording (.rrd) to scrub in the Rerun
+    /// viewer: the robot, the camera's view, the series and the models
+    /// (needs the `rerun` feature: `--features rerun`).
+    #[arg(long, value_name = "FILE.rrd")]
+    pub rerun: Option<PathBuf>,
+    /// The trial written by --rerun (default: the typical one, whose errors
+    /// are nearest the run's medians).
+    #[arg(long, value_name = "SEED", requires = "rerun")]
+    pub rerun_seed: Option<u64>,
+}
+
+/// One trial of a run, as [`RerunArgs::write`] chooses among them.
+#[derive(Debug, Clone, Copy)]
+pub struct RunTrial<'a> {
+    /// Its scenario.
+    pub scenario: &'a Scenario,
+    /// The models it is judged against.
+    pub models: &'a MeasuredModels,
+    /// Its recorded world.
+    pub recording: &'a Recording,
+    /// Its learner's run.
+    pub outcome: &'a TrialOutcome,
+    /// Its status and figures.
+    pub row: &'a (u64, TrialStatus, Figures),
+}
+
+impl RerunArgs {
+    /// Refuses `--rerun` early, before a long run, in a build without the
+    /// `rerun` feature.
+    pub fn check(&self) -> anyhow::Result<()> {
+        anyhow::ensure!(
+            self.rerun.is_none() || cfg!(feature = "rerun"),
+            "--rerun needs the `rerun` feature: cargo run --release --features rerun --example ..."
+        );
+        Ok(())
+    }
+
+    /// If `--rerun FILE` was given, writes `--rerun-seed`'s trial (or the
+    /// typical one) of `trials` to FILE: the trial is simulated again, its
+    /// frames checked against its recording, and its learner run again.
+    pub fn write(&self, trials: &[RunTrial<'_>]) -> anyhow::Result<()> {
+        let Some(path) = &self.rerun else {
+            return Ok(());
+        };
+        self.check()?;
+        let rows: Vec<_> = trials.iter().map(|t| t.row.clone()).collect();
+        let seed = self
+            .rerun_seed
+            .or_else(|| testbed::summary::typical_seed(&rows))
+            .ok_or_else(|| anyhow::anyhow!("--rerun: no trial finished ok to record"))?;
+        let trial = trials
+            .iter()
+            .find(|t| t.recording.seed == seed)
+            .ok_or_else(|| anyhow::anyhow!("--rerun-seed {seed}: no such trial in this run"))?;
+        write_rerun(path, trial)
+    }
+}
+
+#[cfg(feature = "rerun")]
+fn write_rerun(path: &Path, trial: &RunTrial<'_>) -> anyhow::Result<()> {
+    use testbed::rrd::{TrialLog, log_trial};
+    let seed = trial.recording.seed;
+    println!(
+        "Writing trial {seed} to the Rerun recording {}...",
+        path.display()
+    );
+    let mut log = TrialLog::save(path, trial.models)?;
+    let learner = &trial.scenario.learner_name;
+    let (_, outcome) = log_trial(
+        &mut log,
+        trial.scenario,
+        trial.models,
+        seed,
+        learner,
+        Some(trial.recording),
+    )?;
+    log.finish()?;
+    anyhow::ensure!(
+        outcome.action_model == trial.outcome.action_model
+            && outcome.sensor_model == trial.outcome.sensor_model,
+        "trial {seed}: the learner {learner} ended with other models when run again"
+    );
+    println!(
+        "  wrote {} (open it with `rerun {}`)",
+        path.display(),
+        path.display()
+    );
+    Ok(())
+}
+
+#[cfg(not(feature = "rerun"))]
+fn write_rerun(_: &Path, _: &RunTrial<'_>) -> anyhow::Result<()> {
+    Ok(())
 }
 
 /// If `--learner list` was asked for, prints the learners' names, one per line,

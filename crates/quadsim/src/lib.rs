@@ -20,6 +20,7 @@ pub mod heading;
 pub mod ik;
 pub mod robot_file;
 pub mod scale;
+pub mod scene;
 pub mod servo;
 pub mod sim;
 pub mod vision;

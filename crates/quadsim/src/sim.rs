@@ -14,6 +14,7 @@ use crate::description::RobotDescription;
 use crate::error::{RobotError, SimConfigError, SimError};
 use crate::heading::{HeadingConfig, HeadingKeeper};
 use crate::ik::LegAngles;
+use crate::scene::{Part, Placement, Role, Scene, SceneBody, Shape};
 use crate::servo::{ServoConfig, ServoSetpoints};
 use crate::vision::{Camera, CameraConfig, Frame};
 use crate::walk::{WalkConfig, WalkEngine};
@@ -248,6 +249,11 @@ impl SimConfig {
 pub struct QuadrupedSim {
     config: SimConfig,
     world: PhysicsWorld,
+    /// The floor's body.
+    floor: RigidBodyHandle,
+    /// The robot's links that have bodies: URDF name, body, and the link
+    /// they hang from (an index into this list).
+    links: Vec<(String, RigidBodyHandle, Option<usize>)>,
     torso: RigidBodyHandle,
     camera_parent: RigidBodyHandle,
     camera_mount: Pose,
@@ -361,6 +367,21 @@ impl QuadrupedSim {
             let k = joint_index.iter().position(|&u| u == i)?;
             handles.joints[k].joint
         };
+        let mut links: Vec<(String, RigidBodyHandle, Option<usize>)> = Vec::new();
+        for link in &description.urdf.links {
+            if let Some(body) = body_of(&link.name) {
+                links.push((link.name.clone(), body, None));
+            }
+        }
+        for k in 0..links.len() {
+            let parent = description
+                .urdf
+                .joints
+                .iter()
+                .find(|j| j.child.link == links[k].0)
+                .and_then(|j| links.iter().position(|l| l.0 == j.parent.link));
+            links[k].2 = parent;
+        }
         // A checked description has these; the loader could still merge them away.
         let no_link = |link: &str| RobotError::MissingLink { link: link.into() };
         let torso =
@@ -406,6 +427,8 @@ impl QuadrupedSim {
         let mut sim = Self {
             config,
             world,
+            floor,
+            links,
             torso,
             camera_parent,
             camera_mount,
@@ -619,16 +642,79 @@ impl QuadrupedSim {
     /// (see [`crate::vision::render_rgb`]): for viewers and saved frames, not
     /// the noisy reading the host gets.
     pub fn camera_image(&self) -> Vec<u8> {
-        let intrinsics = self.config.camera.intrinsics;
-        let blob = crate::vision::find_band(
+        crate::vision::render_rgb(&self.config.camera.intrinsics, self.camera_blob().as_ref())
+    }
+
+    /// The band as the head camera sees it now, before noise (for viewers:
+    /// the host gets only the noisy reading), or `None` where it gives no
+    /// reading.
+    pub fn camera_blob(&self) -> Option<crate::vision::BandBlob> {
+        crate::vision::find_band(
             &self.world,
             &self.camera_pose(),
-            &intrinsics,
+            &self.config.camera.intrinsics,
             &self.config.beacon,
             self.band,
         )
-        .ok();
-        crate::vision::render_rgb(&intrinsics, blob.as_ref())
+        .ok()
+    }
+
+    /// Every body of the world with its colliders' shapes (see
+    /// [`crate::scene`]), in the order of [`QuadrupedSim::placements`]: the
+    /// floor, the beacon, then the robot's links in URDF order.
+    pub fn scene(&self) -> Scene {
+        let beacon = self.world.colliders[self.band].parent();
+        let parts = |body: RigidBodyHandle| -> Vec<Part> {
+            self.world.bodies[body]
+                .colliders()
+                .iter()
+                .map(|&c| {
+                    let collider = &self.world.colliders[c];
+                    let role = if body == self.floor {
+                        Role::Floor
+                    } else if c == self.band {
+                        Role::BeaconBand
+                    } else if Some(body) == beacon {
+                        Role::BeaconPole
+                    } else {
+                        Role::Robot
+                    };
+                    Part {
+                        shape: Shape::of(collider.shape()),
+                        in_body: collider
+                            .position_wrt_parent()
+                            .map_or(Placement::IDENTITY, Placement::from),
+                        role,
+                    }
+                })
+                .collect()
+        };
+        let world_body = |name: &str, body: RigidBodyHandle| SceneBody {
+            name: name.into(),
+            robot_link: false,
+            parent: None,
+            parts: parts(body),
+        };
+        let mut bodies = vec![world_body("floor", self.floor)];
+        bodies.extend(beacon.map(|b| world_body("beacon", b)));
+        let first_link = bodies.len();
+        bodies.extend(self.links.iter().map(|(name, body, parent)| SceneBody {
+            name: name.clone(),
+            robot_link: true,
+            parent: parent.map(|p| first_link + p),
+            parts: parts(*body),
+        }));
+        Scene { bodies }
+    }
+
+    /// Where every body of [`QuadrupedSim::scene`] is now, in its order.
+    pub fn placements(&self) -> Vec<Placement> {
+        let beacon = self.world.colliders[self.band].parent();
+        std::iter::once(self.floor)
+            .chain(beacon)
+            .chain(self.links.iter().map(|l| l.1))
+            .map(|b| Placement::from(self.world.bodies[b].position()))
+            .collect()
     }
 
     /// The band's collider in the world (for rendering what the camera sees).
@@ -732,6 +818,11 @@ impl QuadrupedSim {
     /// Ground truth: the camera's pose in the world (optical axis +x, image up +z).
     pub fn camera_pose(&self) -> Pose {
         *self.world.bodies[self.camera_parent].position() * self.camera_mount
+    }
+
+    /// [`QuadrupedSim::camera_pose`] as a [`Placement`].
+    pub fn camera_placement(&self) -> Placement {
+        Placement::from(&self.camera_pose())
     }
 
     /// The robot's multibody (for tests of the physics itself).

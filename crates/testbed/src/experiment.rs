@@ -96,12 +96,24 @@ pub fn record(
 }
 
 /// Runs learner `name` (set up for `scenario`) over a recording, judged
-/// against `models`.
+/// against `models` every [`JUDGE_EVERY_S`].
 pub fn learn(
     scenario: &Scenario,
     models: &MeasuredModels,
     recording: &Recording,
     name: &str,
+) -> Result<TrialOutcome, TrialError> {
+    learn_every(scenario, models, recording, name, JUDGE_EVERY_S)
+}
+
+/// [`learn`], judging the models every `judge_every_s` (the learner's run
+/// does not depend on it).
+pub fn learn_every(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    recording: &Recording,
+    name: &str,
+    judge_every_s: f64,
 ) -> Result<TrialOutcome, TrialError> {
     let reference = models.reference();
     let mut learner =
@@ -122,7 +134,7 @@ pub fn learn(
         learner.as_mut(),
         Some(&mut a0_baseline),
         &reference,
-        JUDGE_EVERY_S,
+        judge_every_s,
     )?)
 }
 

@@ -240,11 +240,15 @@ pub struct Reference {
     pub changes: Vec<(f64, Reference)>,
 }
 
-/// The learned models' errors at one moment.
+/// The learned models at one moment, and their errors.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Judgement {
     /// When, s.
     pub t_s: f64,
+    /// The learned action model judged, if there was one.
+    pub action_model: Option<Polynomial>,
+    /// The learned sensor model judged, if there was one.
+    pub sensor_model: Option<Polynomial>,
     /// Action RMSE after the best scale, mm/s.
     pub action_rmse_mm_s: Option<f64>,
     /// Sensor RMSE after the best affine map, mm.
@@ -282,6 +286,8 @@ impl Reference {
         let s = sensor.map(|m| metrics::sensor_error(&m, &world.sensor));
         Judgement {
             t_s,
+            action_model: action,
+            sensor_model: sensor,
             action_rmse_mm_s: a.map(|e| e.rmse),
             sensor_rmse_mm: s.map(|e| e.rmse),
             consistency: a

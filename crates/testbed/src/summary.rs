@@ -619,6 +619,27 @@ pub fn summary_json(
     })
 }
 
+/// The typical trial of a run: of the ok ones, the one whose action and
+/// sensor errors are together nearest the run's medians (least
+/// `|a / median(a) - 1| + |s / median(s) - 1|`; the first such seed on a tie).
+pub fn typical_seed(rows: &[(u64, TrialStatus, Figures)]) -> Option<u64> {
+    let ok: Vec<&(u64, TrialStatus, Figures)> = rows.iter().filter(|r| r.1.is_ok()).collect();
+    let median = |f: fn(&Figures) -> f64| {
+        let mut v: Vec<f64> = ok.iter().map(|r| f(&r.2)).collect();
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied()
+    };
+    let (a, s) = (
+        median(|f| f.action_rmse_mm_s)?,
+        median(|f| f.sensor_rmse_mm)?,
+    );
+    let distance =
+        |f: &Figures| (f.action_rmse_mm_s / a - 1.0).abs() + (f.sensor_rmse_mm / s - 1.0).abs();
+    ok.iter()
+        .min_by(|x, y| distance(&x.2).total_cmp(&distance(&y.2)))
+        .map(|r| r.0)
+}
+
 /// A run's trials summarised (what `train` and `replay` report): each trial's
 /// row, the best polynomials they are judged against, the aggregate, and
 /// `summary.json`'s contents.
@@ -689,6 +710,28 @@ mod tests {
         );
         let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
         assert!(none.mean.action_rmse_mm_s.is_nan());
+    }
+
+    #[test]
+    fn the_typical_trial_is_nearest_the_medians() {
+        let row = |seed, a, s, status| {
+            let f = Figures {
+                action_rmse_mm_s: a,
+                sensor_rmse_mm: s,
+                ..Figures::filled(1.0)
+            };
+            (seed, status, f)
+        };
+        let rows = [
+            row(0, 5.0, 100.0, TrialStatus::Ok),
+            row(1, 10.0, 20.0, TrialStatus::Ok),
+            row(2, 11.0, 52.0, TrialStatus::Ok),
+            row(3, 30.0, 50.0, TrialStatus::Ok),
+            row(4, 10.0, 50.0, TrialStatus::Fell),
+        ];
+        // Medians of the ok trials: 11 mm/s and 52 mm; trial 2 is both.
+        assert_eq!(typical_seed(&rows), Some(2));
+        assert_eq!(typical_seed(&rows[4..]), None);
     }
 
     #[test]
