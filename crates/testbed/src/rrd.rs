@@ -30,7 +30,7 @@ use crate::experiment::{self, RecordedTrial};
 use crate::metrics;
 use crate::reference::{Judgement, MeasuredModels, Reference};
 use crate::scenario::Scenario;
-use crate::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialOutcome, TrialRunner};
+use crate::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
 
 /// The timeline everything is logged on.
 pub const TIMELINE: &str = "sim_time";
@@ -468,22 +468,6 @@ impl TrialLog {
         Ok(())
     }
 
-    /// Logs a learner's whole run over a trial (its trace and judgements, in
-    /// time order).
-    pub fn outcome(&mut self, outcome: &TrialOutcome) -> Result<(), RrdError> {
-        let mut judgements = outcome.over_time.iter().peekable();
-        for row in &outcome.trace {
-            while let Some(j) = judgements.next_if(|j| j.t_s <= row.t_s) {
-                self.judgement(j)?;
-            }
-            self.learner_row(row)?;
-        }
-        for j in judgements.chain(std::iter::once(&outcome.last)) {
-            self.judgement(j)?;
-        }
-        Ok(())
-    }
-
     /// Writes out everything logged.
     pub fn finish(self) -> Result<(), RrdError> {
         self.rec
@@ -492,42 +476,41 @@ impl TrialLog {
     }
 }
 
-/// Runs the trial of `scenario` from `seed` again, with learner `learner`,
-/// writing it to `log`. The physics gives the same bits as any run of it: if
-/// `expected` (a recording of it) is given, the frames are checked against it.
+/// Writes the trial of `scenario` from `seed`, run by learner `learner`, to
+/// `log`, frame by frame: the world, then what the learner knew after it.
+/// The learner runs over `recording` (the trial's recording, or, if `None`,
+/// one made first); then the physics runs the trial again for the scene,
+/// and each frame is checked against the recording's, bit for bit.
 pub fn log_trial(
     log: &mut TrialLog,
     scenario: &Scenario,
     models: &MeasuredModels,
     seed: u64,
     learner: &str,
-    expected: Option<&Recording>,
+    recording: Option<&Recording>,
 ) -> Result<RecordedTrial, RrdError> {
-    let config = experiment::trial_config(scenario, models, seed)?;
-    let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
-    let started = std::time::Instant::now();
-    let mut frames = Vec::with_capacity(runner.total_frames() as usize);
-    while !runner.finished() {
-        let frame = runner.step_frame()?;
-        if let Some(e) = expected {
-            if e.frames.get(frames.len()) != Some(&frame) {
-                return Err(RrdError::NotReproduced {
-                    seed,
-                    frame: frames.len(),
-                });
-            }
-        }
-        log.world_frame(runner.sim(), &frame)?;
-        frames.push(frame);
-    }
-    let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
-    let recording = Recording {
-        seed,
-        frames,
-        realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
+    let recording = match recording {
+        Some(r) => r.clone(),
+        None => experiment::record(scenario, models, seed)?,
     };
     let outcome = experiment::learn_every(scenario, models, &recording, learner, MODELS_EVERY_S)?;
-    log.outcome(&outcome)?;
+    let config = experiment::trial_config(scenario, models, seed)?;
+    let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
+    let mut judgements = outcome.over_time.iter().peekable();
+    for (k, (recorded, row)) in recording.frames.iter().zip(&outcome.trace).enumerate() {
+        let frame = runner.step_frame()?;
+        if frame != *recorded {
+            return Err(RrdError::NotReproduced { seed, frame: k });
+        }
+        log.world_frame(runner.sim(), &frame)?;
+        while let Some(j) = judgements.next_if(|j| j.t_s <= row.t_s) {
+            log.judgement(j)?;
+        }
+        log.learner_row(row)?;
+    }
+    for j in judgements.chain(std::iter::once(&outcome.last)) {
+        log.judgement(j)?;
+    }
     Ok((recording, outcome))
 }
 
@@ -824,10 +807,13 @@ mod tests {
     fn a_trial_simulated_again_is_checked_frame_by_frame() {
         let (scenario, models, recording) = short_trial();
         let name = scenario.learner_name.clone();
+        // Recorded afresh, then simulated again for the scene: the same frames
+        // both times, and those of any other recording of the trial.
         let mut log = memory_log(&models);
-        let (again, _) = log_trial(&mut log, &scenario, &models, 3, &name, Some(&recording))
-            .expect("the same trial again");
+        let (again, outcome) =
+            log_trial(&mut log, &scenario, &models, 3, &name, None).expect("the trial");
         assert_eq!(again.frames, recording.frames);
+        assert_eq!(outcome.trace.len(), recording.frames.len());
         // A recording that is not this trial's is caught at its first
         // different frame.
         let mut other = recording.clone();
