@@ -349,3 +349,31 @@ fn a_scheduled_change_changes_the_world_and_the_yardstick_at_its_time() {
     let outcome = experiment::learn(&scenario, &models, &recording, "scasm").expect("learned");
     assert_eq!(outcome.world_changes_s, vec![30.0]);
 }
+
+#[test]
+fn the_best_polynomial_filter_is_the_model_class_floor() {
+    // The filter with the best polynomials of the learner's degrees through
+    // the measured models: a quartic S fits the measured curve better than a
+    // cubic, so its filter is nearer the one with the measured models.
+    let (scenario, models) = setup();
+    let recording = experiment::record(scenario, models, 2).expect("record");
+    let figures = |sensor_degree: usize| {
+        let mut s = scenario.clone();
+        s.set(&format!("learner.sensor_degree={sensor_degree}"))
+            .expect("degree");
+        let outcome = experiment::learn(&s, models, &recording, "scasm").expect("learn");
+        assert!(outcome.trace.iter().all(|r| r.x_loc_best_mm.is_some()));
+        testbed::summary::Figures::of(&outcome, (f64::NAN, f64::NAN, f64::NAN))
+    };
+    let (cubic, quartic) = (figures(3), figures(4));
+    let truth = cubic.localisation_true_models_rmse_mm;
+    assert_eq!(truth, quartic.localisation_true_models_rmse_mm);
+    let (c, q) = (
+        cubic.localisation_best_poly_rmse_mm,
+        quartic.localisation_best_poly_rmse_mm,
+    );
+    assert!(
+        q < c && 0.8 * truth < q,
+        "best-polynomial filters: cubic S {c:.1} mm, quartic S {q:.1} mm; measured models {truth:.1} mm"
+    );
+}

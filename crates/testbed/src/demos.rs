@@ -144,7 +144,13 @@ fn learn(
         frames,
         realtime_factor: f64::NAN,
     };
-    let outcome = trial::learn(&recording, &mut learner, None, reference, MAX_DEMO_S)?;
+    let outcome = trial::learn(
+        &recording,
+        &mut learner,
+        trial::Comparators::default(),
+        reference,
+        MAX_DEMO_S,
+    )?;
     Ok(DemoRun {
         trace: outcome.trace,
         action: learner.action_model(),

@@ -132,7 +132,13 @@ pub fn learn_every(
     Ok(trial::learn(
         recording,
         learner.as_mut(),
-        Some(&mut a0_baseline),
+        trial::Comparators {
+            a0_baseline: Some(&mut a0_baseline),
+            best_degrees: Some((
+                scenario.learner.action_degree,
+                scenario.learner.sensor_degree,
+            )),
+        },
         &reference,
         judge_every_s,
     )?)

@@ -132,18 +132,19 @@ fn cell(v: Option<f64>) -> String {
 }
 
 /// A trace, one row per camera frame:
-/// `t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0`
+/// `t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm`
 /// (empty cells where there was no reading or no model; `x_loc` is the
 /// localiser's estimate with the learned models, in their units,
 /// `x_loc_true_mm` with the measured ones, `x_loc_a0` with A0 and the sensor
-/// model learned from it).
+/// model learned from it, `x_loc_best_mm` with the best polynomials of the
+/// learner's degrees through the measured models).
 pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
     write_csv(
         path,
-        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0",
+        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm",
         trace.iter().map(|r| {
             format!(
-                "{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{}",
                 r.t_s,
                 r.command,
                 cell(r.obs_px),
@@ -153,7 +154,8 @@ pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
                 cell(r.x_loc),
                 cell(r.x_loc_std),
                 cell(r.x_loc_true_mm),
-                cell(r.x_loc_a0)
+                cell(r.x_loc_a0),
+                cell(r.x_loc_best_mm)
             )
         }),
     )

@@ -37,6 +37,10 @@ pub struct Figures {
     /// The localiser with A0 and the sensor model learned from it (section
     /// IV), last 60 s, mm.
     pub localisation_a0_rmse_mm: f64,
+    /// The localiser with the best polynomials of the learner's degrees
+    /// through the measured models (the model class's floor), last 60 s, mm.
+    #[serde(default = "nan")]
+    pub localisation_best_poly_rmse_mm: f64,
     /// The learner's raw `x_s` alone, last 60 s, mm.
     pub x_s_rmse_mm: f64,
     /// The learner's raw `x_a` alone, last 60 s, mm.
@@ -238,6 +242,7 @@ impl Figures {
             localisation_whole_rmse_mm: location_rmse(trace, |r| r.x_loc),
             localisation_true_models_rmse_mm: location_rmse(last, |r| r.x_loc_true_mm),
             localisation_a0_rmse_mm: location_rmse(last, |r| r.x_loc_a0),
+            localisation_best_poly_rmse_mm: location_rmse(last, |r| r.x_loc_best_mm),
             x_s_rmse_mm: location_rmse(last, |r| r.x_s),
             x_a_rmse_mm: location_rmse(last, |r| r.x_a),
             ..Self::filled(f64::NAN)
@@ -258,6 +263,7 @@ impl Figures {
             localisation_whole_rmse_mm: field(|x| x.localisation_whole_rmse_mm),
             localisation_true_models_rmse_mm: field(|x| x.localisation_true_models_rmse_mm),
             localisation_a0_rmse_mm: field(|x| x.localisation_a0_rmse_mm),
+            localisation_best_poly_rmse_mm: field(|x| x.localisation_best_poly_rmse_mm),
             x_s_rmse_mm: field(|x| x.x_s_rmse_mm),
             x_a_rmse_mm: field(|x| x.x_a_rmse_mm),
             change_before_action_rmse_mm_s: field(|x| x.change_before_action_rmse_mm_s),
@@ -286,6 +292,7 @@ impl Figures {
             localisation_whole_rmse_mm: value,
             localisation_true_models_rmse_mm: value,
             localisation_a0_rmse_mm: value,
+            localisation_best_poly_rmse_mm: value,
             x_s_rmse_mm: value,
             x_a_rmse_mm: value,
             change_before_action_rmse_mm_s: value,
@@ -443,6 +450,11 @@ impl Aggregate {
                 s.localisation_true_models_rmse_mm,
             ),
             (
+                "filter, best polynomials of the learner's degrees",
+                m.localisation_best_poly_rmse_mm,
+                s.localisation_best_poly_rmse_mm,
+            ),
+            (
                 "filter, A0 and its section IV sensor model",
                 m.localisation_a0_rmse_mm,
                 s.localisation_a0_rmse_mm,
@@ -463,7 +475,7 @@ impl Aggregate {
 ",
         );
         for (name, mean, std) in rows {
-            out.push_str(&format!("  {name:<44} {mean:7.1} +- {std:.1}\n"));
+            out.push_str(&format!("  {name:<50} {mean:7.1} +- {std:.1}\n"));
         }
         out.push_str(&format!(
             "  (the learned-model filter over the whole trial: {:.1} +- {:.1})",

@@ -377,6 +377,9 @@ pub struct TraceRow {
     /// The localiser's estimate with the identity action model A0 and the
     /// sensor model learned from it (section IV), in A0's units.
     pub x_loc_a0: Option<f64>,
+    /// The localiser's estimate with the best polynomials of the learner's
+    /// degrees through the measured models (the model class's floor), mm.
+    pub x_loc_best_mm: Option<f64>,
 }
 
 impl TraceRow {
@@ -393,6 +396,7 @@ impl TraceRow {
             x_loc_std: None,
             x_loc_true_mm: None,
             x_loc_a0: None,
+            x_loc_best_mm: None,
         }
     }
 }
@@ -420,18 +424,42 @@ pub struct TrialOutcome {
     pub world_changes_s: Vec<f64>,
 }
 
+/// What the localisers with the learner's models are compared with, beyond
+/// the measured models (see [`learn`]).
+#[derive(Default)]
+pub struct Comparators<'a> {
+    /// A learner of S from the identity action model A0, fed the same frames:
+    /// a filter with A0 and its S.
+    pub a0_baseline: Option<&'a mut dyn CalibrationLearner>,
+    /// The learner's degrees `(action, sensor)`: a filter with the best
+    /// polynomials of these degrees through the measured models.
+    pub best_degrees: Option<(usize, usize)>,
+}
+
+impl std::fmt::Debug for Comparators<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Comparators")
+            .field("a0_baseline", &self.a0_baseline.is_some())
+            .field("best_degrees", &self.best_degrees)
+            .finish()
+    }
+}
+
 /// Runs `learner` over a recorded trial (no physics): feeds it every frame,
 /// judges its models every `judge_every_s` and at the end. Localisers ride
 /// along (see [`TraceRow`]): with the learner's models, with the measured
-/// ones, and, if `a0_baseline` is given (a learner of S from the identity
-/// action model, fed the same frames), with A0 and its S.
+/// ones, and with those of `comparators`.
 pub fn learn(
     recording: &Recording,
     learner: &mut dyn CalibrationLearner,
-    mut a0_baseline: Option<&mut dyn CalibrationLearner>,
+    comparators: Comparators<'_>,
     reference: &Reference,
     judge_every_s: f64,
 ) -> Result<TrialOutcome, EventError> {
+    let Comparators {
+        mut a0_baseline,
+        best_degrees,
+    } = comparators;
     let frames = &recording.frames;
     let frame_s = frames.first().map_or(0.05, |f| f.dt_s);
     let judge_every = (judge_every_s / frame_s).round().max(1.0) as usize;
@@ -443,16 +471,34 @@ pub fn learn(
         top_command: frames.iter().map(|f| f.command.abs()).fold(0.0, f64::max),
         ..LocaliserConfig::default()
     };
-    let (mut with_learned, mut with_true, mut with_a0) = (
+    let (mut with_learned, mut with_true, mut with_a0, mut with_best) = (
         Following::new(config),
         Localiser::new(config),
         Following::new(config),
+        Localiser::new(config),
     );
     // The measured models of each world, which may change mid-trial: from
     // when, and the models.
     let true_models: Vec<(f64, Tabulated)> = std::iter::once((f64::NEG_INFINITY, reference))
         .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
         .map(|(at_s, r)| (at_s, Tabulated::new(&r.action, &r.sensor)))
+        .collect();
+    // The best polynomials of the learner's degrees through each world's
+    // measured models, in mm (the location is the distance to the beacon,
+    // which walking towards it shortens).
+    let best_models: Vec<(f64, Learned)> = best_degrees
+        .into_iter()
+        .flat_map(|(da, ds)| {
+            std::iter::once((f64::NEG_INFINITY, reference))
+                .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
+                .filter_map(move |(at_s, r)| {
+                    let towards: Vec<(f64, f64)> = r.action.iter().map(|&(c, v)| (c, -v)).collect();
+                    let located: Vec<(f64, f64)> = r.sensor.iter().map(|&(d, o)| (o, d)).collect();
+                    let action = crate::metrics::best_polynomial(&towards, da)?;
+                    let sensor = crate::metrics::best_polynomial(&located, ds)?;
+                    Some((at_s, Learned { action, sensor }))
+                })
+        })
         .collect();
     for (k, f) in frames.iter().enumerate() {
         feed(learner, f)?;
@@ -471,6 +517,11 @@ pub fn learn(
         let world = true_models.iter().rfind(|(at_s, _)| *at_s <= f.t_s + 1e-9);
         row.x_loc_true_mm = world
             .and_then(|(_, models)| with_true.step(models, f.command, f.dt_s, f.obs_px))
+            .map(|b| b.x);
+        row.x_loc_best_mm = best_models
+            .iter()
+            .rfind(|(at_s, _)| *at_s <= f.t_s + 1e-9)
+            .and_then(|(_, models)| with_best.step(models, f.command, f.dt_s, f.obs_px))
             .map(|b| b.x);
         if let Some(baseline) = a0_baseline.as_deref_mut() {
             feed(baseline, f)?;
@@ -510,5 +561,11 @@ pub fn run_trial(
 ) -> Result<TrialOutcome, TrialError> {
     let judge_every_s = config.judge_every_s;
     let recording = record(description, sim_config, config)?;
-    Ok(learn(&recording, learner, None, reference, judge_every_s)?)
+    Ok(learn(
+        &recording,
+        learner,
+        Comparators::default(),
+        reference,
+        judge_every_s,
+    )?)
 }
