@@ -681,20 +681,30 @@ impl Solved {
     }
 }
 
-/// The affine map `(scale, offset)` that best takes `path` onto `previous`
-/// where both have locations (least squares); `None` if it is not defined.
+/// The affine map `(scale, offset)` that takes `path` onto `previous` where
+/// both have locations: the same mean and spread, the sign of their
+/// covariance (the reduced major axis; a least-squares fit would shrink the
+/// units towards a point whenever the two paths disagree); `None` if it is not
+/// defined.
 fn units_map(path: &[f64], previous: &[f64]) -> Option<(f64, f64)> {
     let n = path.len().min(previous.len());
     if n < 2 {
         return None;
     }
-    let mut fit = PolynomialFit::new(1, 1.0);
-    for (&x, &y) in path[..n].iter().zip(&previous[..n]) {
-        fit.add(x, y);
-    }
-    let line = fit.polynomial()?;
-    let (offset, scale) = (line.coeffs()[0], line.coeffs()[1]);
-    (scale.is_finite() && offset.is_finite() && scale != 0.0).then_some((scale, offset))
+    let (x, y) = (&path[..n], &previous[..n]);
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / n as f64;
+    let (mx, my) = (mean(x), mean(y));
+    let (sxx, syy, sxy) = x
+        .iter()
+        .zip(y)
+        .fold((0.0, 0.0, 0.0), |(xx, yy, xy), (a, b)| {
+            let (dx, dy) = (a - mx, b - my);
+            (xx + dx * dx, yy + dy * dy, xy + dx * dy)
+        });
+    let scale = sxy.signum() * (syy / sxx).sqrt();
+    let offset = my - scale * mx;
+    (scale.is_finite() && offset.is_finite() && scale != 0.0 && sxy != 0.0)
+        .then_some((scale, offset))
 }
 
 fn solve(all_frames: &[FrameData], config: &BatchMlConfig, start: &Start) -> Option<Solved> {
