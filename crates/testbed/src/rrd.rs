@@ -113,6 +113,14 @@ impl TrialLog {
         Self::new(Self::builder().spawn()?, models)
     }
 
+    /// A recording kept in memory (for tests and tools), with its storage.
+    pub fn memory(
+        models: &MeasuredModels,
+    ) -> Result<(Self, rerun::sink::MemorySinkStorage), RrdError> {
+        let (rec, storage) = Self::builder().memory()?;
+        Ok((Self::new(rec, models)?, storage))
+    }
+
     fn builder() -> rerun::RecordingStreamBuilder {
         rerun::RecordingStreamBuilder::new("scasm-testbed")
     }
@@ -786,43 +794,6 @@ mod tests {
         assert_eq!(ticks((1000.0, 3700.0)), [1000.0, 2000.0, 3000.0]);
         assert_eq!(ticks((9.0, 44.0)), [10.0, 20.0, 30.0, 40.0]);
         assert!(ticks((1.0, 1.0)).is_empty());
-    }
-
-    /// A short trial of the default scenario, its reference measured once.
-    fn short_trial() -> (Scenario, MeasuredModels, Recording) {
-        let mut scenario = Scenario::paper().expect("scenario");
-        scenario.set("trial.duration=5").expect("duration");
-        let cache = std::env::temp_dir().join("scasm-testbed-rrd-test-cache");
-        let models = crate::reference::measured_models(&scenario, Some(&cache)).expect("models");
-        let recording = experiment::record(&scenario, &models, 3).expect("record");
-        (scenario, models, recording)
-    }
-
-    fn memory_log(models: &MeasuredModels) -> TrialLog {
-        let (rec, _storage) = TrialLog::builder().memory().expect("memory sink");
-        TrialLog::new(rec, models).expect("log")
-    }
-
-    #[test]
-    fn a_trial_simulated_again_is_checked_frame_by_frame() {
-        let (scenario, models, recording) = short_trial();
-        let name = scenario.learner_name.clone();
-        // Recorded afresh, then simulated again for the scene: the same frames
-        // both times, and those of any other recording of the trial.
-        let mut log = memory_log(&models);
-        let (again, outcome) =
-            log_trial(&mut log, &scenario, &models, 3, &name, None).expect("the trial");
-        assert_eq!(again.frames, recording.frames);
-        assert_eq!(outcome.trace.len(), recording.frames.len());
-        // A recording that is not this trial's is caught at its first
-        // different frame.
-        let mut other = recording.clone();
-        other.frames[40].command += 1.0;
-        let mut log = memory_log(&models);
-        match log_trial(&mut log, &scenario, &models, 3, &name, Some(&other)) {
-            Err(RrdError::NotReproduced { seed: 3, frame: 40 }) => {}
-            other => panic!("expected frame 40 to differ, got {other:?}"),
-        }
     }
 
     #[test]
