@@ -269,6 +269,13 @@ impl Reference {
             .map_or(self, |(_, r)| r)
     }
 
+    /// Each world of the trial: from when (s; the first from minus
+    /// infinity), and its reference.
+    pub fn worlds(&self) -> impl Iterator<Item = (f64, &Reference)> {
+        std::iter::once((f64::NEG_INFINITY, self))
+            .chain(self.changes.iter().map(|(at_s, r)| (*at_s, r)))
+    }
+
     /// The reference of the world as it ends.
     pub fn last(&self) -> &Reference {
         self.at(f64::INFINITY)

@@ -127,7 +127,7 @@ impl TrialLog {
 
     fn new(rec: RecordingStream, models: &MeasuredModels) -> Result<Self, RrdError> {
         let reference = models.reference();
-        let worlds = worlds(&reference);
+        let worlds: Vec<(f64, &Reference)> = reference.worlds().collect();
         let span = |points: &mut dyn Iterator<Item = f64>| {
             points.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
                 (lo.min(v), hi.max(v))
@@ -520,13 +520,6 @@ pub fn log_trial(
         log.judgement(j)?;
     }
     Ok((recording, outcome))
-}
-
-/// The reference's worlds: from when (s; the first from -inf), and its models.
-fn worlds(reference: &Reference) -> Vec<(f64, &Reference)> {
-    std::iter::once((f64::NEG_INFINITY, reference))
-        .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
-        .collect()
 }
 
 fn f32s(v: [f64; 3]) -> [f32; 3] {

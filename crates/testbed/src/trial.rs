@@ -479,8 +479,8 @@ pub fn learn(
     );
     // The measured models of each world, which may change mid-trial: from
     // when, and the models.
-    let true_models: Vec<(f64, Tabulated)> = std::iter::once((f64::NEG_INFINITY, reference))
-        .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
+    let true_models: Vec<(f64, Tabulated)> = reference
+        .worlds()
         .map(|(at_s, r)| (at_s, Tabulated::new(&r.action, &r.sensor)))
         .collect();
     // The best polynomials of the learner's degrees through each world's
@@ -489,15 +489,13 @@ pub fn learn(
     let best_models: Vec<(f64, Learned)> = best_degrees
         .into_iter()
         .flat_map(|(da, ds)| {
-            std::iter::once((f64::NEG_INFINITY, reference))
-                .chain(reference.changes.iter().map(|(at_s, r)| (*at_s, r)))
-                .filter_map(move |(at_s, r)| {
-                    let towards: Vec<(f64, f64)> = r.action.iter().map(|&(c, v)| (c, -v)).collect();
-                    let located: Vec<(f64, f64)> = r.sensor.iter().map(|&(d, o)| (o, d)).collect();
-                    let action = crate::metrics::best_polynomial(&towards, da)?;
-                    let sensor = crate::metrics::best_polynomial(&located, ds)?;
-                    Some((at_s, Learned { action, sensor }))
-                })
+            reference.worlds().filter_map(move |(at_s, r)| {
+                let towards: Vec<(f64, f64)> = r.action.iter().map(|&(c, v)| (c, -v)).collect();
+                let located: Vec<(f64, f64)> = r.sensor.iter().map(|&(d, o)| (o, d)).collect();
+                let action = crate::metrics::best_polynomial(&towards, da)?;
+                let sensor = crate::metrics::best_polynomial(&located, ds)?;
+                Some((at_s, Learned { action, sensor }))
+            })
         })
         .collect();
     for (k, f) in frames.iter().enumerate() {
