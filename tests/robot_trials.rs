@@ -361,7 +361,7 @@ fn the_best_polynomial_filter_is_the_model_class_floor() {
         let mut s = scenario.clone();
         s.set(&format!("learner.sensor_degree={sensor_degree}"))
             .expect("degree");
-        let outcome = experiment::learn(&s, models, &recording, "scasm").expect("learn");
+        let outcome = experiment::learn(&s, models, &recording, "batch-ml").expect("learn");
         assert!(outcome.trace.iter().all(|r| r.x_loc_best_mm.is_some()));
         testbed::summary::Figures::of(&outcome, (f64::NAN, f64::NAN, f64::NAN))
     };
@@ -375,5 +375,32 @@ fn the_best_polynomial_filter_is_the_model_class_floor() {
     assert!(
         q < c && 0.8 * truth < q,
         "best-polynomial filters: cubic S {c:.1} mm, quartic S {q:.1} mm; measured models {truth:.1} mm"
+    );
+}
+
+#[test]
+fn batch_ml_with_a_quartic_sensor_localises_within_1_5x_of_the_true_models() {
+    // Issue 14's criterion, on three development seeds (never the evaluation
+    // seeds 0-14): the filter with `batch-ml`'s models, sensor degree 4, over
+    // the last 60 s, against the filter with the measured models.
+    let (scenario, models) = setup();
+    let mut s = scenario.clone();
+    s.set("learner.sensor_degree=4").expect("degree");
+    let figures: Vec<_> = (100..103)
+        .map(|seed| {
+            let recording = experiment::record(&s, models, seed).expect("record");
+            let outcome = experiment::learn(&s, models, &recording, "batch-ml").expect("learn");
+            testbed::summary::Figures::of(&outcome, (f64::NAN, f64::NAN, f64::NAN))
+        })
+        .collect();
+    let mean = |f: fn(&testbed::summary::Figures) -> f64| {
+        figures.iter().map(f).sum::<f64>() / figures.len() as f64
+    };
+    let learned = mean(|f| f.localisation_rmse_mm);
+    let truth = mean(|f| f.localisation_true_models_rmse_mm);
+    let raw = mean(|f| f.x_s_rmse_mm);
+    assert!(
+        learned < 1.5 * truth && learned < raw,
+        "filter with learned models {learned:.1} mm, with the measured ones {truth:.1} mm, raw x_s {raw:.1} mm"
     );
 }

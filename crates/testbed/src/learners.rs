@@ -32,7 +32,7 @@ pub const LEARNERS: [(&str, &str); 4] = [
     (
         "batch-ml",
         "maximum likelihood over the whole trial: path, A and the forward sensor model jointly, \
-         initialised from scasm-eiv",
+         started from scasm-eiv, its own last solution and the readings' pinhole path",
     ),
 ];
 
