@@ -85,7 +85,8 @@ fn a_robot_that_cannot_walk_the_gait_is_refused_naming_its_file() {
         1,
     );
     let text = format!("{}{joint}{}", &urdf[..start], &urdf[end..]);
-    let dir = std::env::temp_dir().join(format!("scasm-stiff-knee-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("scasm-stiff-knee-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     let path = dir.join("stiff_knee.urdf");
     std::fs::write(&path, text).expect("write");

@@ -77,7 +77,7 @@ fn write(dir: &std::path::Path, name: &str, text: &str) -> PathBuf {
 }
 
 fn expect_error(robot_toml: &str, needles: &[&str]) {
-    let dir = std::env::temp_dir().join(format!(
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
         "quadsim-robot-file-{}-{}",
         std::process::id(),
         needles[0].replace(|c: char| !c.is_ascii_alphanumeric(), "_")
@@ -142,7 +142,8 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
 
 #[test]
 fn a_robot_files_gait_replaces_the_scaled_gait() {
-    let dir = std::env::temp_dir().join(format!("quadsim-gait-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("quadsim-gait-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     write(&dir, "robot.urdf", ERS7_URDF);
     let local = ERS7_FILE.replace("../ers7.urdf", "robot.urdf");
@@ -163,7 +164,8 @@ fn a_robot_files_gait_replaces_the_scaled_gait() {
 
 #[test]
 fn a_massless_urdf_names_the_file_and_the_link() {
-    let dir = std::env::temp_dir().join(format!("quadsim-massless-{}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("quadsim-massless-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("dir");
     let massless = with_zero_masses(ERS7_URDF);
     write(&dir, "robot.urdf", &massless);
