@@ -248,9 +248,12 @@ impl Start {
         let action = fit.polynomial().filter(Polynomial::is_finite)?;
         // Units in which A's slope at a standstill is 1, as A0's is.
         let slope = action.coeffs().get(1).copied().unwrap_or(0.0);
+        if !(slope.is_finite() && slope != 0.0) {
+            return None;
+        }
         let mut start = Self { path, action };
         start.rescale(1.0 / slope, 0.0);
-        (slope.is_finite() && slope != 0.0).then_some(start)
+        Some(start)
     }
 
     /// Puts this start in the units `scale x + offset`.
@@ -348,16 +351,16 @@ impl BatchMl {
             .filter_map(|start| solve(&self.frames, &c, start))
             .min_by(|a, b| a.cost.total_cmp(&b.cost));
         if let Some(mut s) = best {
-            // The units the host has seen so far: the previous solution's,
-            // else the online learner's.
-            let seen = match &self.solved {
-                Some(previous) => Some(previous.path.clone()),
+            // Into the units the host has seen so far: the previous
+            // solution's, else the online learner's.
+            let map = match &self.solved {
+                Some(previous) => units_map(&s.start.path, &previous.path),
                 None => self
                     .online
                     .sensor_model()
-                    .map(|_| online_path(&self.frames)),
+                    .and_then(|_| units_map(&s.start.path, &online_path(&self.frames))),
             };
-            if let Some((scale, offset)) = seen.and_then(|path| units_map(&s.start.path, &path)) {
+            if let Some((scale, offset)) = map {
                 s.rescale(scale, offset);
             }
             self.solution = Some(s.solution);
