@@ -14,7 +14,6 @@ use std::sync::Mutex;
 use anyhow::{Result, bail};
 use clap::Parser;
 use report::page::Page;
-use report::plot::{Chart, Mark, Series, colours};
 use testbed::benchmark::{self, Entry};
 use testbed::experiment::{self, Job};
 use testbed::learners;
@@ -219,59 +218,36 @@ fn main() -> Result<()> {
     );
     output::write_atomic(&out.join("leaderboard.md"), markdown.as_bytes())?;
 
-    // The figure: each learner's ratio to the best polynomial, per scenario.
-    let palette = [
-        colours::BLUE,
-        colours::RED,
-        colours::GREEN,
-        colours::ORANGE,
-        colours::PURPLE,
-        colours::BLACK,
-    ];
-    let chart = |stem: &str, what: &str, ratio: &dyn Fn(&benchmark::Cell) -> f64| {
-        let series = learners
-            .iter()
-            .enumerate()
-            .map(|(k, l)| {
-                let points = names
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(i, n)| {
-                        cells
-                            .iter()
-                            .find(|c| &c.learner == l && &c.scenario == n)
-                            .map(|c| ((i + 1) as f64, ratio(c)))
-                    })
-                    .collect();
-                Series::new(l, Mark::Line, palette[k % palette.len()], points)
-            })
-            .collect();
-        let chart = Chart {
-            title: format!("{what} error / best possible polynomial"),
-            x_label: format!(
-                "scenario: {}",
-                names
-                    .iter()
-                    .enumerate()
-                    .map(|(i, n)| format!("{} {n}", i + 1))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ),
-            y_label: "ratio (1 = the best possible)".into(),
-            series,
-            legend: report::plot::SeriesLabelPosition::UpperRight,
-        };
-        chart.save(&out.join(stem)).map(|_| stem.to_string())
-    };
-    report::plot::register_font()?;
+    // The figures: each learner's median ratio to the best polynomial, and
+    // its 10th to 90th percentile, per scenario.
     let figures = vec![
         (
-            chart("leaderboard-action", "Action", &|c| c.action_ratio())?,
-            "Each learner's mean action error over the best quartic's, per scenario.".to_string(),
+            report::spread::save_ratios(
+                &out,
+                "leaderboard-action",
+                "Action",
+                &cells,
+                &learners,
+                &names,
+                |c, f| c.action_ratio_of(f),
+            )?,
+            "Each learner's action error over the best quartic's per scenario: the median \
+             (dot) and the 10th to 90th percentile (bar) over the seeds."
+                .to_string(),
         ),
         (
-            chart("leaderboard-sensor", "Sensor", &|c| c.sensor_ratio())?,
-            "Each learner's mean sensor error over the best cubic's, per scenario.".to_string(),
+            report::spread::save_ratios(
+                &out,
+                "leaderboard-sensor",
+                "Sensor",
+                &cells,
+                &learners,
+                &names,
+                |c, f| c.sensor_ratio_of(f),
+            )?,
+            "Each learner's sensor error over the best cubic's per scenario: the median (dot) \
+             and the 10th to 90th percentile (bar) over the seeds."
+                .to_string(),
         ),
     ];
     Page {

@@ -20,7 +20,7 @@ use testbed::experiment;
 use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::scenario::Scenario;
-use testbed::summary::{self, RunSummary};
+use testbed::summary::RunSummary;
 
 /// Replay recorded trials to a learner.
 #[derive(Debug, Parser)]
@@ -123,7 +123,7 @@ fn main() -> Result<()> {
     println!("\n{}", report::table::text(&header, &table));
     println!("{}", aggregate.describe());
     println!("\n{}", aggregate.describe_localisation());
-    if let Some(text) = summary::describe_recovery(rows, &scenarios[0].changes_text()) {
+    if let Some(text) = aggregate.describe_recovery(&scenarios[0].changes_text()) {
         println!("\n{text}");
     }
     let trials: Vec<scasm_testbed::RunTrial> = datasets

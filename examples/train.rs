@@ -23,7 +23,7 @@ use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
 use testbed::scenario::Scenario;
-use testbed::summary::{self, RunSummary};
+use testbed::summary::RunSummary;
 use testbed::trial::{Recording, TrialOutcome};
 
 /// Run calibration trials on the simulated quadruped (the paper's experiment).
@@ -153,7 +153,7 @@ fn main() -> Result<()> {
     println!("{}", aggregate.describe());
     println!("{}", models.describe(&scenario.stopwatch()));
     println!("\n{}", aggregate.describe_localisation());
-    if let Some(text) = summary::describe_recovery(rows, &scenario.changes_text()) {
+    if let Some(text) = aggregate.describe_recovery(&scenario.changes_text()) {
         println!("\n{text}");
     }
 

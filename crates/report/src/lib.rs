@@ -10,6 +10,7 @@ pub mod heatmap;
 pub mod page;
 pub mod paper;
 pub mod plot;
+pub mod spread;
 pub mod table;
 
 use std::path::Path;

@@ -17,6 +17,7 @@ pub fn results_table(
         "figure",
         "learned / best poly (ours / paper)",
         "ours (mean +- std)",
+        "median [p10, p90] (median / best)",
         "paper",
         "best poly (ours / paper)",
         "A0 (ours / paper)",
@@ -31,6 +32,15 @@ pub fn results_table(
         )
     };
     let pair = |a: f64, b: f64| format!("{a:.1} / {b:.1}");
+    let tail = |get: fn(&Figures) -> f64, decimals: usize| {
+        format!(
+            "{:.d$} [{:.d$}, {:.d$}]",
+            get(&aggregate.median),
+            get(&aggregate.p10),
+            get(&aggregate.p90),
+            d = decimals
+        )
+    };
     let ratio = |a: f64, best_a: f64, b: f64, best_b: f64| {
         format!("{:.2}x / {:.2}x", a / best_a, b / best_b)
     };
@@ -44,6 +54,11 @@ pub fn results_table(
                 paper.action_best_rmse_mm_s,
             ),
             ours(mean.action_rmse_mm_s, std.action_rmse_mm_s, velocity_range),
+            format!(
+                "{} ({:.2}x)",
+                tail(|f| f.action_rmse_mm_s, 1),
+                aggregate.median.action_rmse_mm_s / mean.action_best_rmse_mm_s
+            ),
             format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
             pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
             pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
@@ -57,6 +72,11 @@ pub fn results_table(
                 paper.sensor_best_rmse_mm,
             ),
             ours(mean.sensor_rmse_mm, std.sensor_rmse_mm, distance_range),
+            format!(
+                "{} ({:.2}x)",
+                tail(|f| f.sensor_rmse_mm, 1),
+                aggregate.median.sensor_rmse_mm / mean.sensor_best_rmse_mm
+            ),
             format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
             pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
             "-".into(),
@@ -65,6 +85,7 @@ pub fn results_table(
             "consistency".into(),
             "-".into(),
             format!("{:.3} +- {:.3}", mean.consistency, std.consistency),
+            tail(|f| f.consistency, 3),
             format!("{:.2} +- 0.06", paper.consistency),
             "-".into(),
             "-".into(),

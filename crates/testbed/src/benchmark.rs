@@ -84,24 +84,29 @@ pub struct Entry {
     pub figures: Figures,
 }
 
-/// `leaderboard.csv`: one row per entry.
+/// `leaderboard.csv`: one row per entry: learner, scenario, seed, every
+/// figure ([`Figures::FIELDS`]), whether it ended worse than its start, and
+/// its status.
 pub fn write_leaderboard_csv(path: &Path, entries: &[Entry]) -> std::io::Result<()> {
+    let fields: Vec<&str> = Figures::FIELDS.iter().map(|f| f.name).collect();
     output::write_csv(
         path,
-        "learner,scenario,seed,action_rmse_mm_s,sensor_rmse_mm,consistency,\
-         action_best_rmse_mm_s,sensor_best_rmse_mm,status",
+        &format!(
+            "learner,scenario,seed,{},worse_than_start,status",
+            fields.join(",")
+        ),
         entries.iter().map(|e| {
-            let f = &e.figures;
+            let figures: Vec<String> = Figures::FIELDS
+                .iter()
+                .map(|f| (f.get)(&e.figures).to_string())
+                .collect();
             format!(
-                "{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{}",
                 e.learner,
                 e.scenario,
                 e.seed,
-                f.action_rmse_mm_s,
-                f.sensor_rmse_mm,
-                f.consistency,
-                f.action_best_rmse_mm_s,
-                f.sensor_best_rmse_mm,
+                figures.join(","),
+                e.status.is_ok() && e.figures.worse_than_start(),
                 e.status.to_string().replace(',', ";")
             )
         }),
@@ -122,12 +127,23 @@ pub struct Cell {
 impl Cell {
     /// Mean action error over the best quartic's (the ratio).
     pub fn action_ratio(&self) -> f64 {
-        self.aggregate.mean.action_rmse_mm_s / self.aggregate.mean.action_best_rmse_mm_s
+        self.action_ratio_of(&self.aggregate.mean)
     }
 
     /// Mean sensor error over the best cubic's.
     pub fn sensor_ratio(&self) -> f64 {
-        self.aggregate.mean.sensor_rmse_mm / self.aggregate.mean.sensor_best_rmse_mm
+        self.sensor_ratio_of(&self.aggregate.mean)
+    }
+
+    /// A statistic of the action error (the median, say) over the best
+    /// quartic's (the same in every trial of a cell: one reference).
+    pub fn action_ratio_of(&self, statistic: &Figures) -> f64 {
+        statistic.action_rmse_mm_s / self.aggregate.mean.action_best_rmse_mm_s
+    }
+
+    /// A statistic of the sensor error over the best cubic's.
+    pub fn sensor_ratio_of(&self, statistic: &Figures) -> f64 {
+        statistic.sensor_rmse_mm / self.aggregate.mean.sensor_best_rmse_mm
     }
 }
 
@@ -153,18 +169,22 @@ pub fn cells(entries: &[Entry], learners: &[String], scenarios: &[String]) -> Ve
     out
 }
 
-/// The summary table: per scenario and learner, the mean +- std of each
-/// figure, the ratios to the best polynomials, the share of the range, and the
-/// trials ok.
+/// The summary table: per scenario and learner, each error's mean +- std
+/// and median [p10, p90], their ratios to the best polynomials (mean;
+/// median), the consistency, the trials worse than their start (in the
+/// means), and the trials ok.
 pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
     let header = [
         "scenario",
         "learner",
         "action mm/s",
-        "action / best",
+        "action median [p10, p90]",
+        "action / best (mean; median)",
         "sensor mm",
-        "sensor / best",
+        "sensor median [p10, p90]",
+        "sensor / best (mean; median)",
         "consistency",
+        "worse than start",
         "trials ok",
     ]
     .map(String::from)
@@ -172,16 +192,36 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
     let rows = cells
         .iter()
         .map(|c| {
-            let (m, s) = (&c.aggregate.mean, &c.aggregate.std);
+            let a = &c.aggregate;
+            let (m, s) = (&a.mean, &a.std);
+            let tail = |get: fn(&Figures) -> f64| {
+                format!(
+                    "{:.1} [{:.1}, {:.1}]",
+                    get(&a.median),
+                    get(&a.p10),
+                    get(&a.p90)
+                )
+            };
             vec![
                 c.scenario.clone(),
                 c.learner.clone(),
                 format!("{:.1} +- {:.1}", m.action_rmse_mm_s, s.action_rmse_mm_s),
-                format!("{:.2}x", c.action_ratio()),
+                tail(|f| f.action_rmse_mm_s),
+                format!(
+                    "{:.2}x; {:.2}x",
+                    c.action_ratio(),
+                    c.action_ratio_of(&a.median)
+                ),
                 format!("{:.1} +- {:.1}", m.sensor_rmse_mm, s.sensor_rmse_mm),
-                format!("{:.2}x", c.sensor_ratio()),
+                tail(|f| f.sensor_rmse_mm),
+                format!(
+                    "{:.2}x; {:.2}x",
+                    c.sensor_ratio(),
+                    c.sensor_ratio_of(&a.median)
+                ),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
-                format!("{}/{}", c.aggregate.ok(), c.aggregate.trials),
+                format!("{}/{}", a.worse_than_start.len(), a.ok()),
+                format!("{}/{}", a.ok(), a.trials),
             ]
         })
         .collect();

@@ -95,12 +95,17 @@ impl Models for Tabulated {
     }
 }
 
+/// The default [`LocaliserConfig::speed_error`]: `0.1 * sqrt(0.05)`.
+pub const SPEED_ERROR_PER_ROOT_S: f64 = 0.022_360_679_774_997_9;
+
 /// The filter's noise model.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LocaliserConfig {
     /// The standard deviation of a reading, px.
     pub reading_std_px: f64,
-    /// The action model's error, as a fraction of the predicted speed.
+    /// The action model's error, as a fraction of the predicted speed per
+    /// square root of a second: a random walk of the location whose variance
+    /// grows by `(speed_error v)^2 dt`, whatever the frame rate.
     pub speed_error: f64,
     /// A speed error at any command, as a fraction of the speed at
     /// `top_command`, per square root of a second.
@@ -111,12 +116,16 @@ pub struct LocaliserConfig {
 
 impl Default for LocaliserConfig {
     /// A reading good to 1 px (the paper's stand-and-read spread), an action
-    /// model good to 10 %, and 3 % of the top speed of drift whatever the
-    /// command. Not tuned: round values from the paper's own figures.
+    /// model good to 2.2 % of the speed per root second, and 3 % of the top
+    /// speed per root second of drift whatever the command. Not tuned. The
+    /// 2.2 % is what was first written as "10 % of the speed", but applied as
+    /// 10 % of each 20 Hz frame's step, independently from frame to frame
+    /// (0.1 x sqrt(0.05 s)); it is now a rate, so that the filter is the
+    /// same filter at any frame rate, and the same as before at 20 Hz.
     fn default() -> Self {
         Self {
             reading_std_px: 1.0,
-            speed_error: 0.1,
+            speed_error: SPEED_ERROR_PER_ROOT_S,
             speed_floor: 0.03,
             top_command: 300.0,
         }
@@ -175,7 +184,7 @@ impl Localiser {
         let c = self.config;
         if let (Some((x, var)), Some(v)) = (self.state, models.velocity(command)) {
             let top = models.velocity(c.top_command).map_or(0.0, f64::abs);
-            let q = (c.speed_error * v * dt_s).powi(2) + (c.speed_floor * top).powi(2) * dt_s;
+            let q = ((c.speed_error * v).powi(2) + (c.speed_floor * top).powi(2)) * dt_s;
             self.state = Some((x + v * dt_s, var + q));
         }
         // A reading where the sensor model is flat says nothing of the location.
@@ -265,6 +274,30 @@ mod tests {
     use super::*;
     use rand::SeedableRng;
     use rand_distr::{Distribution, Normal};
+
+    #[test]
+    fn the_prediction_noise_is_a_rate_the_same_at_any_frame_rate() {
+        // Placed by one reading, then a second of walking at 200 mm/s with
+        // no reading, in 20 frames or in 40.
+        let variance_after_a_second = |frames: u32| {
+            let mut f = Localiser::new(LocaliserConfig::default());
+            let models = exact();
+            f.step(&models, 0.0, 0.05, Some(16.0));
+            let placed = f.belief().expect("placed").std.powi(2);
+            for _ in 0..frames {
+                f.step(&models, 200.0, 1.0 / f64::from(frames), None);
+            }
+            f.belief().expect("placed").std.powi(2) - placed
+        };
+        let (at20, at40) = (variance_after_a_second(20), variance_after_a_second(40));
+        // (0.0224 * 200)^2 + (0.03 * 300)^2 mm^2 over the second.
+        let expected = (SPEED_ERROR_PER_ROOT_S * 200.0).powi(2) + (0.03_f64 * 300.0).powi(2);
+        assert!(
+            (at20 - expected).abs() < 1e-9 * expected,
+            "{at20} {expected}"
+        );
+        assert!((at40 - at20).abs() < 1e-9 * at20, "{at40} against {at20}");
+    }
 
     /// A world where the models are exact: walking at `c` mm/s towards the
     /// beacon, obs = 38400 / d.

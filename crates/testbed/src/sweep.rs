@@ -178,36 +178,11 @@ pub fn shard(runs: Vec<Run>, k: usize, n: usize) -> Vec<Run> {
         .collect()
 }
 
-/// A metric's column name (in `summary.json`'s terms) and its field.
-type Metric = (&'static str, fn(&mut Figures) -> &mut f64);
+/// The statistics `sweep_summary.csv` has of each figure, in column order.
+pub const SUMMARY_STATISTICS: [&str; 5] = ["mean", "std", "median", "p10", "p90"];
 
-/// The metrics `sweep.csv` has, in its column order: the final figures, then
-/// how the learner weathered a change of the world (NaN if none).
-pub const METRICS: [Metric; 13] = [
-    ("action_rmse_mm_s", |f| &mut f.action_rmse_mm_s),
-    ("sensor_rmse_mm", |f| &mut f.sensor_rmse_mm),
-    ("action_best_rmse_mm_s", |f| &mut f.action_best_rmse_mm_s),
-    ("sensor_best_rmse_mm", |f| &mut f.sensor_best_rmse_mm),
-    ("action_a0_rmse_mm_s", |f| &mut f.action_a0_rmse_mm_s),
-    ("consistency", |f| &mut f.consistency),
-    ("realtime_factor", |f| &mut f.realtime_factor),
-    ("change_peak_action_rmse_mm_s", |f| {
-        &mut f.change_peak_action_rmse_mm_s
-    }),
-    ("change_settled_action_rmse_mm_s", |f| {
-        &mut f.change_settled_action_rmse_mm_s
-    }),
-    ("reconvergence_action_s", |f| &mut f.reconvergence_action_s),
-    ("change_settled_sensor_rmse_mm", |f| {
-        &mut f.change_settled_sensor_rmse_mm
-    }),
-    ("reconvergence_sensor_s", |f| &mut f.reconvergence_sensor_s),
-    ("reconvergence_s", |f| &mut f.reconvergence_s),
-];
-
-fn metric_values(f: &Figures) -> [f64; METRICS.len()] {
-    let mut f = *f;
-    METRICS.map(|(_, field)| *field(&mut f))
+fn metric_values(f: &Figures) -> impl Iterator<Item = f64> + '_ {
+    Figures::FIELDS.iter().map(move |field| (field.get)(f))
 }
 
 /// A combination's settings and its runs' `(seed, status, figures)`.
@@ -222,10 +197,15 @@ pub struct CombinationSummary {
     pub runs_ok: usize,
     /// Runs that did not (fell, no model, diverged, error): not in the means.
     pub runs_failed: usize,
-    /// Mean over those runs (NaN if none).
+    /// Runs that finished `ok` with final models worse than their start
+    /// ([`Figures::worse_than_start`]): in the means.
+    pub runs_worse_than_start: usize,
+    /// Mean over the `ok` runs (NaN if none).
     pub mean: Figures,
-    /// Standard deviation over those runs (NaN if none).
+    /// Standard deviation over them (NaN if none).
     pub std: Figures,
+    /// Median, 10th and 90th percentiles over them (NaN if none).
+    pub quantiles: [Figures; 3],
 }
 
 /// One finished run's row.
@@ -249,7 +229,7 @@ pub struct Results {
 fn header(keys: &[String]) -> String {
     let mut h: Vec<String> = keys.to_vec();
     h.push("seed".into());
-    h.extend(METRICS.iter().map(|m| m.0.to_string()));
+    h.extend(Figures::FIELDS.iter().map(|m| m.name.to_string()));
     h.push("status".into());
     h.join(",")
 }
@@ -288,7 +268,7 @@ impl Results {
                 let mut cells: Vec<String> =
                     r.run.settings.iter().map(|(_, v)| v.clone()).collect();
                 cells.push(r.run.seed.to_string());
-                cells.extend(metric_values(&r.figures).iter().map(|v| v.to_string()));
+                cells.extend(metric_values(&r.figures).map(|v| v.to_string()));
                 cells.push(r.status.to_string().replace(',', ";"));
                 cells.join(",")
             }),
@@ -317,10 +297,23 @@ impl Results {
                 });
             }
         };
-        if head != header(&keys) {
+        // Each metric column by name: a column this version does not know is
+        // an error; a figure the file lacks (written by an older version) is
+        // NaN in its rows.
+        let metrics: Vec<&'static crate::summary::Field> = columns[keys.len() + 1..]
+            .iter()
+            .take(columns.len().saturating_sub(keys.len() + 2))
+            .map(|c| {
+                Figures::field(c).ok_or_else(|| SweepError::File {
+                    path: path.display().to_string(),
+                    reason: format!("column `{c}` is not a figure this version knows"),
+                })
+            })
+            .collect::<Result<_, _>>()?;
+        if columns.last() != Some(&"status") || columns.len() < keys.len() + 2 {
             return Err(SweepError::File {
                 path: path.display().to_string(),
-                reason: format!("columns `{head}` are not a sweep's"),
+                reason: format!("columns `{head}` are not a sweep's (the last must be `status`)"),
             });
         }
         let mut results = Self::new(keys.clone());
@@ -331,8 +324,12 @@ impl Results {
                 path: path.display().to_string(),
                 reason: format!("line {}: {reason}", n + 2),
             };
-            if cells.len() != keys.len() + 2 + METRICS.len() {
-                return Err(bad("wrong number of columns"));
+            if cells.len() != columns.len() {
+                return Err(bad(&format!(
+                    "{} cells where the header has {} columns (a truncated or damaged file?)",
+                    cells.len(),
+                    columns.len()
+                )));
             }
             let settings = keys
                 .iter()
@@ -340,14 +337,14 @@ impl Results {
                 .map(|(k, v)| (k.clone(), v.to_string()))
                 .collect();
             let seed = cells[keys.len()].parse().map_err(|_| bad("bad seed"))?;
-            let m: Vec<f64> = cells[keys.len() + 1..keys.len() + 1 + METRICS.len()]
-                .iter()
-                .map(|c| c.parse::<f64>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| bad("bad number"))?;
             let mut figures = Figures::filled(f64::NAN);
-            for ((_, field), v) in METRICS.iter().zip(m) {
-                *field(&mut figures) = v;
+            for (field, cell) in metrics.iter().zip(&cells[keys.len() + 1..]) {
+                *(field.get_mut)(&mut figures) = cell.parse::<f64>().map_err(|_| {
+                    bad(&format!(
+                        "`{cell}` in column {} is not a number",
+                        field.name
+                    ))
+                })?;
             }
             results.insert(Row {
                 run: Run { settings, seed },
@@ -377,24 +374,29 @@ impl Results {
                     settings,
                     runs_ok: a.ok(),
                     runs_failed: a.failed.len(),
+                    runs_worse_than_start: a.worse_than_start.len(),
                     mean: a.mean,
                     std: a.std,
+                    quantiles: [a.median, a.p10, a.p90],
                 }
             })
             .collect()
     }
 
     /// Writes `sweep_summary.csv` into `dir`, whole: per combination, the number
-    /// of runs that finished ok and that did not, and each metric's mean and
-    /// std over the ok ones.
+    /// of runs that finished ok, that did not, and that finished ok but worse
+    /// than their start, and each metric's mean, std, median, p10 and p90
+    /// over the ok ones.
     pub fn write_summary(&self, dir: &Path) -> Result<(), SweepError> {
         let path = dir.join("sweep_summary.csv");
         let mut h: Vec<String> = self.keys.clone();
         h.push("runs_ok".into());
         h.push("runs_failed".into());
-        for (m, _) in METRICS {
-            h.push(format!("{m}_mean"));
-            h.push(format!("{m}_std"));
+        h.push("runs_worse_than_start".into());
+        for m in Figures::FIELDS {
+            for stat in SUMMARY_STATISTICS {
+                h.push(format!("{}_{stat}", m.name));
+            }
         }
         output::write_csv(
             &path,
@@ -403,9 +405,12 @@ impl Results {
                 let mut cells: Vec<String> = g.settings.into_iter().map(|(_, v)| v).collect();
                 cells.push(g.runs_ok.to_string());
                 cells.push(g.runs_failed.to_string());
-                for (m, s) in metric_values(&g.mean).iter().zip(metric_values(&g.std)) {
-                    cells.push(m.to_string());
-                    cells.push(s.to_string());
+                cells.push(g.runs_worse_than_start.to_string());
+                let [median, p10, p90] = &g.quantiles;
+                for field in Figures::FIELDS {
+                    for f in [&g.mean, &g.std, median, p10, p90] {
+                        cells.push((field.get)(f).to_string());
+                    }
                 }
                 cells.join(",")
             }),

@@ -416,6 +416,10 @@ pub struct TrialOutcome {
     pub sensor_model: Option<Polynomial>,
     /// The final judgement.
     pub last: Judgement,
+    /// The final judgement of the uncalibrated start it is compared with
+    /// (A0 and the sensor model learned from it on the same frames, section
+    /// IV), if it rode along (see [`Comparators::a0_baseline`]).
+    pub start: Option<Judgement>,
     /// Whether the robot tipped over at any point.
     pub fell: bool,
     /// Simulated seconds per wall-clock second of the recording's physics.
@@ -539,6 +543,7 @@ pub fn learn(
     Ok(TrialOutcome {
         seed: recording.seed,
         last: reference.judge(end_s, learner),
+        start: a0_baseline.map(|b| reference.judge(end_s, b)),
         trace,
         over_time,
         action_model: learner.action_model(),

@@ -1,0 +1,409 @@
+//! Many trials' figures: the mean, spread, median and 10th and 90th
+//! percentiles over the trials that ended ok, the failed trials counted and
+//! named, and the trials that ended worse than their uncalibrated start named.
+
+use super::figures::Figures;
+use super::recovery::RECONVERGED_WITHIN;
+use super::status::TrialStatus;
+
+/// One trial of a run: its seed, how it ended and its figures.
+pub type TrialRow = (u64, TrialStatus, Figures);
+
+/// The `q`-quantile (0 to 1) of `sorted` (ascending), interpolated linearly
+/// between the closest ranks (numpy's default); NaN if it is empty.
+pub fn quantile(sorted: &[f64], q: f64) -> f64 {
+    let Some(last) = sorted.len().checked_sub(1) else {
+        return f64::NAN;
+    };
+    let h = last as f64 * q.clamp(0.0, 1.0);
+    let lo = h.floor() as usize;
+    match sorted.get(lo + 1) {
+        Some(&next) => sorted[lo] + (h - lo as f64) * (next - sorted[lo]),
+        None => sorted[lo],
+    }
+}
+
+fn defined(values: &[f64]) -> Vec<f64> {
+    values.iter().copied().filter(|v| !v.is_nan()).collect()
+}
+
+fn mean(v: &[f64]) -> f64 {
+    v.iter().sum::<f64>() / v.len() as f64
+}
+
+fn percentile(values: &[f64], q: f64) -> f64 {
+    let mut v = defined(values);
+    v.sort_by(f64::total_cmp);
+    quantile(&v, q)
+}
+
+/// Many trials' figures. Every statistic of a figure is over the `Ok` trials
+/// in which that figure is defined (not NaN: a re-convergence time is NaN in a
+/// trial whose model never came back), and [`Aggregate::counted`] says how
+/// many those were; a trial that is `Ok` but worse than its start stays in
+/// them (a bad model is a result, not a missing one).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Aggregate {
+    /// Trials in all.
+    pub trials: usize,
+    /// Mean (NaN if no trial counted).
+    pub mean: Figures,
+    /// Population standard deviation.
+    pub std: Figures,
+    /// Median.
+    pub median: Figures,
+    /// 10th percentile.
+    pub p10: Figures,
+    /// 90th percentile.
+    pub p90: Figures,
+    /// How many trials each figure's statistics are over.
+    pub counted: Figures,
+    /// The trials that did not end `Ok`: seed and status.
+    pub failed: Vec<(u64, TrialStatus)>,
+    /// The `Ok` trials whose final models are worse than the uncalibrated
+    /// start ([`Figures::worse_than_start`]): seed and figures.
+    pub worse_than_start: Vec<(u64, Figures)>,
+}
+
+impl Aggregate {
+    /// Aggregates `(seed, status, figures)` per trial.
+    pub fn of(trials: &[TrialRow]) -> Self {
+        let ok: Vec<Figures> = trials.iter().filter(|t| t.1.is_ok()).map(|t| t.2).collect();
+        Self {
+            trials: trials.len(),
+            mean: Figures::map(&ok, |v| mean(&defined(v))),
+            std: Figures::map(&ok, |v| {
+                let v = defined(v);
+                let m = mean(&v);
+                (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64).sqrt()
+            }),
+            median: Figures::map(&ok, |v| percentile(v, 0.5)),
+            p10: Figures::map(&ok, |v| percentile(v, 0.1)),
+            p90: Figures::map(&ok, |v| percentile(v, 0.9)),
+            counted: Figures::map(&ok, |v| defined(v).len() as f64),
+            failed: trials
+                .iter()
+                .filter(|t| !t.1.is_ok())
+                .map(|t| (t.0, t.1.clone()))
+                .collect(),
+            worse_than_start: trials
+                .iter()
+                .filter(|t| t.1.is_ok() && t.2.worse_than_start())
+                .map(|t| (t.0, t.2))
+                .collect(),
+        }
+    }
+
+    /// Trials that ended `Ok`.
+    pub fn ok(&self) -> usize {
+        self.trials - self.failed.len()
+    }
+
+    /// "15 of 15 trials ok", or "13 of 15 trials ok; not in the means: seed 3
+    /// (fell), seed 9 (no model)", and then, if any, "; 1 worse than the
+    /// uncalibrated start (in the means): seed 4 (action 30.1 mm/s against
+    /// A0's 25.5)".
+    pub fn describe(&self) -> String {
+        let mut s = format!("{} of {} trials ok", self.ok(), self.trials);
+        if !self.failed.is_empty() {
+            let named: Vec<String> = self
+                .failed
+                .iter()
+                .map(|(seed, status)| format!("seed {seed} ({status})"))
+                .collect();
+            s.push_str(&format!("; not in the means: {}", named.join(", ")));
+        }
+        if !self.worse_than_start.is_empty() {
+            let named: Vec<String> = self
+                .worse_than_start
+                .iter()
+                .map(|(seed, f)| {
+                    let mut why = Vec::new();
+                    if f.action_rmse_mm_s > f.action_a0_rmse_mm_s {
+                        why.push(format!(
+                            "action {:.1} mm/s against A0's {:.1}",
+                            f.action_rmse_mm_s, f.action_a0_rmse_mm_s
+                        ));
+                    }
+                    if f.sensor_rmse_mm > f.sensor_start_rmse_mm {
+                        why.push(format!(
+                            "sensor {:.1} mm against the start's {:.1}",
+                            f.sensor_rmse_mm, f.sensor_start_rmse_mm
+                        ));
+                    }
+                    format!("seed {seed} ({})", why.join(", "))
+                })
+                .collect();
+            s.push_str(&format!(
+                "; {} worse than the uncalibrated start (in the means): {}",
+                self.worse_than_start.len(),
+                named.join(", ")
+            ));
+        }
+        s
+    }
+
+    /// The failed trials as JSON: `[{"seed": 3, "status": "fell"}, ...]`.
+    pub fn failed_json(&self) -> serde_json::Value {
+        self.failed
+            .iter()
+            .map(|(seed, status)| serde_json::json!({"seed": seed, "status": status.to_string()}))
+            .collect()
+    }
+
+    /// The trials worse than their start as JSON: `[{"seed": 4,
+    /// "action_rmse_mm_s": .., "action_a0_rmse_mm_s": .., "sensor_rmse_mm":
+    /// .., "sensor_start_rmse_mm": ..}, ...]`.
+    pub fn worse_than_start_json(&self) -> serde_json::Value {
+        self.worse_than_start
+            .iter()
+            .map(|(seed, f)| {
+                serde_json::json!({
+                    "seed": seed,
+                    "action_rmse_mm_s": f.action_rmse_mm_s,
+                    "action_a0_rmse_mm_s": f.action_a0_rmse_mm_s,
+                    "sensor_rmse_mm": f.sensor_rmse_mm,
+                    "sensor_start_rmse_mm": f.sensor_start_rmse_mm,
+                })
+            })
+            .collect()
+    }
+
+    /// A figure as `mean +- std, median [p10, p90]`, to `decimals`.
+    pub fn spread(&self, get: fn(&Figures) -> f64, decimals: usize) -> String {
+        format!(
+            "{:.d$} +- {:.d$}, median {:.d$} [{:.d$}, {:.d$}]",
+            get(&self.mean),
+            get(&self.std),
+            get(&self.median),
+            get(&self.p10),
+            get(&self.p90),
+            d = decimals
+        )
+    }
+
+    /// The localisers' figures as a small table: location RMSE over the last
+    /// 60 s, after the best affine map to mm, over the ok trials.
+    pub fn describe_localisation(&self) -> String {
+        type Get = fn(&Figures) -> f64;
+        let rows: [(&str, Get); 6] = [
+            ("filter, learned models", |f| f.localisation_rmse_mm),
+            ("filter, measured (true) models", |f| {
+                f.localisation_true_models_rmse_mm
+            }),
+            ("filter, best polynomials of the learner's degrees", |f| {
+                f.localisation_best_poly_rmse_mm
+            }),
+            ("filter, A0 and its section IV sensor model", |f| {
+                f.localisation_a0_rmse_mm
+            }),
+            ("raw x_s (learned S of each reading)", |f| f.x_s_rmse_mm),
+            ("raw x_a (the learner's dead reckoning)", |f| f.x_a_rmse_mm),
+        ];
+        let mut out = String::from(
+            "location RMSE, last 60 s (mm, after the best affine map; mean +- std, median [p10, p90]):\n",
+        );
+        for (name, get) in rows {
+            out.push_str(&format!("  {name:<50} {}\n", self.spread(get, 1)));
+        }
+        out.push_str(&format!(
+            "  (the learned-model filter over the whole trial: {})",
+            self.spread(|f| f.localisation_whole_rmse_mm, 1)
+        ));
+        out
+    }
+
+    /// How the ok trials weathered the first change of the world, as a small
+    /// table (`None` if the world did not change): each model's error before
+    /// the change, at its peak after it and settled in the new world, and the
+    /// re-convergence time, each over the trials where it is defined (the
+    /// time over those that came back), with how many those were.
+    pub fn describe_recovery(&self, change: &str) -> Option<String> {
+        if self.counted.change_settled_action_rmse_mm_s == 0.0 {
+            return None;
+        }
+        let mut out = format!(
+            "the world changes: {change}; error before / peak after / settled (mean +- std), \
+             and re-convergence to within {RECONVERGED_WITHIN}x of settled:\n"
+        );
+        type Get = fn(&Figures) -> f64;
+        let models: [(&str, [Get; 4]); 2] = [
+            (
+                "action (mm/s)",
+                [
+                    |f| f.change_before_action_rmse_mm_s,
+                    |f| f.change_peak_action_rmse_mm_s,
+                    |f| f.change_settled_action_rmse_mm_s,
+                    |f| f.reconvergence_action_s,
+                ],
+            ),
+            (
+                "sensor (mm)",
+                [
+                    |f| f.change_before_sensor_rmse_mm,
+                    |f| f.change_peak_sensor_rmse_mm,
+                    |f| f.change_settled_sensor_rmse_mm,
+                    |f| f.reconvergence_sensor_s,
+                ],
+            ),
+        ];
+        let (m, s) = (&self.mean, &self.std);
+        for (name, [before, peak, settled, back]) in models {
+            out.push_str(&format!(
+                "  {name:<14} {:6.1} +- {:<5.1} / {:6.1} +- {:<5.1} / {:6.1} +- {:<5.1}  back after \
+                 {:5.0} +- {:.0} s, median {:.0} ({} of {} trials came back)\n",
+                before(m),
+                before(s),
+                peak(m),
+                peak(s),
+                settled(m),
+                settled(s),
+                back(m),
+                back(s),
+                back(&self.median),
+                back(&self.counted),
+                self.ok()
+            ));
+        }
+        out.push_str(&format!(
+            "  both models back after {:.0} +- {:.0} s, median {:.0} ({} of {} trials came back)",
+            m.reconvergence_s,
+            s.reconvergence_s,
+            self.median.reconvergence_s,
+            self.counted.reconvergence_s,
+            self.ok()
+        ));
+        Some(out)
+    }
+
+    /// The statistics as `summary.json` has them: `mean`, `std`, `median`,
+    /// `p10`, `p90` and `n` (how many trials each figure's are over), each an
+    /// object of every figure.
+    pub fn statistics_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        [
+            ("mean", &self.mean),
+            ("std", &self.std),
+            ("median", &self.median),
+            ("p10", &self.p10),
+            ("p90", &self.p90),
+            ("n", &self.counted),
+        ]
+        .into_iter()
+        .map(|(k, f)| (k.to_string(), serde_json::to_value(f).unwrap_or_default()))
+        .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn figures(action: f64) -> Figures {
+        Figures {
+            action_rmse_mm_s: action,
+            action_a0_rmse_mm_s: 100.0,
+            ..Figures::filled(1.0)
+        }
+    }
+
+    #[test]
+    fn failed_trials_are_counted_named_and_kept_out_of_the_mean() {
+        let a = Aggregate::of(&[
+            (0, TrialStatus::Ok, figures(10.0)),
+            (1, TrialStatus::Fell, figures(1000.0)),
+            (2, TrialStatus::Ok, figures(20.0)),
+            (3, TrialStatus::NoModel, Figures::filled(f64::NAN)),
+        ]);
+        assert_eq!((a.trials, a.ok()), (4, 2));
+        assert_eq!(a.mean.action_rmse_mm_s, 15.0);
+        assert_eq!(
+            a.describe(),
+            "2 of 4 trials ok; not in the means: seed 1 (fell), seed 3 (no model)"
+        );
+        let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
+        assert!(none.mean.action_rmse_mm_s.is_nan());
+        assert!(none.median.action_rmse_mm_s.is_nan());
+        assert_eq!(none.counted.action_rmse_mm_s, 0.0);
+    }
+
+    #[test]
+    fn quantiles_interpolate_between_ranks() {
+        let v = [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 11.0];
+        assert_eq!(quantile(&v, 0.5), 6.0);
+        assert_eq!(quantile(&v, 0.1), 2.0);
+        assert_eq!(quantile(&v, 0.9), 10.0);
+        assert_eq!(quantile(&[1.0, 2.0], 0.5), 1.5);
+        assert_eq!(quantile(&[4.0], 0.9), 4.0);
+        assert!(quantile(&[], 0.5).is_nan());
+    }
+
+    #[test]
+    fn the_tail_is_shown_and_a_trial_worse_than_its_start_is_named_and_kept() {
+        // Nine good trials and one far worse than A0 (25 mm/s).
+        let mut rows: Vec<TrialRow> = (0..9)
+            .map(|k| {
+                let f = Figures {
+                    action_rmse_mm_s: 10.0 + k as f64,
+                    action_a0_rmse_mm_s: 25.0,
+                    sensor_start_rmse_mm: 300.0,
+                    sensor_rmse_mm: 50.0,
+                    ..Figures::filled(1.0)
+                };
+                (100 + k, TrialStatus::Ok, f)
+            })
+            .collect();
+        let bad = Figures {
+            action_rmse_mm_s: 130.0,
+            sensor_rmse_mm: 480.0,
+            ..rows[0].2
+        };
+        rows.push((9002, TrialStatus::Ok, bad));
+        let a = Aggregate::of(&rows);
+        assert_eq!(a.ok(), 10);
+        assert_eq!(a.worse_than_start.len(), 1);
+        assert_eq!(a.worse_than_start[0].0, 9002);
+        // In the mean, which it pulls far from the median; the p90 shows it.
+        assert_eq!(a.mean.action_rmse_mm_s, (126.0 + 130.0) / 10.0);
+        assert_eq!(a.median.action_rmse_mm_s, 14.5);
+        assert!(a.p90.action_rmse_mm_s > 20.0, "{}", a.p90.action_rmse_mm_s);
+        let text = a.describe();
+        assert!(
+            text.contains(
+                "1 worse than the uncalibrated start (in the means): seed 9002 \
+                 (action 130.0 mm/s against A0's 25.0, sensor 480.0 mm against the start's 300.0)"
+            ),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn statistics_skip_undefined_values_and_say_how_many_they_are_over() {
+        // Re-converged after 40 and 60 s in two trials; never in the third.
+        let rows: Vec<TrialRow> = [40.0, f64::NAN, 60.0]
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| {
+                let f = Figures {
+                    reconvergence_s: t,
+                    change_settled_action_rmse_mm_s: 8.0,
+                    ..Figures::filled(1.0)
+                };
+                (k as u64, TrialStatus::Ok, f)
+            })
+            .collect();
+        let a = Aggregate::of(&rows);
+        assert_eq!(a.mean.reconvergence_s, 50.0);
+        assert_eq!(a.counted.reconvergence_s, 2.0);
+        assert_eq!(a.counted.action_rmse_mm_s, 3.0);
+        let json = serde_json::Value::Object(a.statistics_json());
+        assert_eq!(json["mean"]["reconvergence_s"], 50.0);
+        assert_eq!(json["n"]["reconvergence_s"], 2.0);
+        let text = a
+            .describe_recovery("world.friction=0.5 at 100 s")
+            .expect("a change");
+        assert!(
+            text.contains("both models back after 50 +- 10 s, median 50 (2 of 3 trials came back)"),
+            "{text}"
+        );
+    }
+}

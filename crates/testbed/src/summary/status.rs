@@ -1,0 +1,87 @@
+//! How a trial ended: only `Ok` trials enter the statistics, every other one is
+//! counted and named.
+
+use crate::trial::TrialOutcome;
+
+/// How a trial ended. Only `Ok` trials enter a mean; every other one is counted
+/// and named in every report, so none silently drops out.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum TrialStatus {
+    /// The robot stayed upright and both models were learned, with finite errors.
+    Ok,
+    /// The robot tipped over (its world is no longer the experiment's).
+    Fell,
+    /// A model was never determined by the data.
+    NoModel,
+    /// Both models exist but an error is not finite.
+    Diverged,
+    /// The trial could not run; the reason.
+    Error(String),
+}
+
+impl TrialStatus {
+    /// The status of a finished trial: a fall first, then a missing model, then
+    /// non-finite errors.
+    pub fn of(outcome: &TrialOutcome) -> Self {
+        let j = &outcome.last;
+        if outcome.fell {
+            Self::Fell
+        } else if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
+            Self::NoModel
+        } else if [j.action_rmse_mm_s, j.sensor_rmse_mm, j.consistency]
+            .iter()
+            .all(|v| v.is_some_and(f64::is_finite))
+        {
+            Self::Ok
+        } else {
+            Self::Diverged
+        }
+    }
+
+    /// Whether the trial counts in the means.
+    pub fn is_ok(&self) -> bool {
+        *self == Self::Ok
+    }
+
+    /// Reads back what [`Display`](std::fmt::Display) wrote.
+    pub fn parse(text: &str) -> Self {
+        match text {
+            "ok" => Self::Ok,
+            "fell" => Self::Fell,
+            "no model" => Self::NoModel,
+            "diverged" => Self::Diverged,
+            other => Self::Error(other.strip_prefix("error: ").unwrap_or(other).into()),
+        }
+    }
+}
+
+impl std::fmt::Display for TrialStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Ok => f.write_str("ok"),
+            Self::Fell => f.write_str("fell"),
+            Self::NoModel => f.write_str("no model"),
+            Self::Diverged => f.write_str("diverged"),
+            Self::Error(e) => write!(f, "error: {e}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn statuses_read_back_as_written() {
+        for s in [
+            TrialStatus::Ok,
+            TrialStatus::Fell,
+            TrialStatus::NoModel,
+            TrialStatus::Diverged,
+            TrialStatus::Error("the learner refused an event".into()),
+        ] {
+            assert_eq!(TrialStatus::parse(&s.to_string()), s);
+        }
+    }
+}
