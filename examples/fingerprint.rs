@@ -4,6 +4,10 @@
 //! refactor) must print the same lines before and after it.
 //!
 //! `cargo run --release --example fingerprint`
+//!
+//! The expected lines are `tests/fixtures/fingerprint.txt`, and `.ci/run`
+//! fails on any difference: a change that alters the physics updates that
+//! file in the same commit and says so.
 
 use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
 

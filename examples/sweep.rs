@@ -122,16 +122,38 @@ fn report(results: &Results, velocity_range: f64) {
             failed.join("; ")
         );
     }
+    let worse: Vec<String> = results
+        .rows()
+        .filter(|r| r.status.is_ok() && r.figures.worse_than_start())
+        .map(|r| r.run.key())
+        .collect();
+    if !worse.is_empty() {
+        println!(
+            "\n{} runs ended worse than their uncalibrated start (in the means): {}",
+            worse.len(),
+            worse.join("; ")
+        );
+    }
     let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
     println!(
-        "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed): {}",
+        "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed, {} worse than \
+         their start): {}",
         g.runs_ok,
         g.runs_failed,
+        g.runs_worse_than_start,
         named.join(", ")
     );
+    let [median, _, p90] = &g.quantiles;
     println!(
-        "  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
-        g.mean.action_rmse_mm_s, g.mean.sensor_rmse_mm, g.mean.consistency
+        "  action {:.1} mm/s (median {:.1}, p90 {:.1}), sensor {:.1} mm (median {:.1}, p90 {:.1}), \
+         consistency {:.3}",
+        g.mean.action_rmse_mm_s,
+        median.action_rmse_mm_s,
+        p90.action_rmse_mm_s,
+        g.mean.sensor_rmse_mm,
+        median.sensor_rmse_mm,
+        p90.sensor_rmse_mm,
+        g.mean.consistency
     );
     let paper = [
         ("learner.gamma", 0.999),

@@ -85,20 +85,35 @@ fn a_replayed_dataset_gives_the_live_models_bit_for_bit() {
 fn every_named_learner_learns_both_models_from_a_recording() {
     let (scenario, models, recording) = setup();
     let reference = models.reference();
-    for name in learners::names() {
+    // Each learner's 90th percentiles over the default `train`'s 15 trials
+    // (README's reproduction of the paper's table, and the replays of its
+    // recordings), mm/s and mm, with a tenth more for margin: one trial of
+    // each learner is within them nine times in ten, and this one (seed 2) is
+    // well within every one.
+    let p90 = [
+        ("scasm-paper", 24.6, 160.3),
+        ("scasm", 17.0, 77.6),
+        ("scasm-eiv", 17.5, 66.1),
+        ("batch-ml", 9.6, 36.7),
+    ];
+    assert_eq!(
+        learners::names().collect::<Vec<_>>(),
+        p90.map(|p| p.0),
+        "every learner has its bound"
+    );
+    let a0 = testbed::metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
+    for (name, action_p90, sensor_p90) in p90 {
         let out = experiment::learn(scenario, models, recording, name).expect(name);
-        let a0 = testbed::metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
         let action = out.last.action_rmse_mm_s.expect("action model");
         let sensor = out.last.sensor_rmse_mm.expect("sensor model");
-        // Every learner ends the paper's 150 s with both models, finite and
-        // sane: the action model within three times A0's error, the sensor
-        // model within a tenth of the 2.4 m range. How good each is, is the
-        // benchmark's business.
         assert!(
-            action < 3.0 * a0,
-            "{name}: action {action:.1} vs A0 {a0:.1}"
+            action < a0 && action < 1.1 * action_p90,
+            "{name}: action {action:.1} mm/s vs A0 {a0:.1} and README's p90 {action_p90}"
         );
-        assert!(sensor < 240.0, "{name}: sensor {sensor:.1} mm");
+        assert!(
+            sensor < 1.1 * sensor_p90,
+            "{name}: sensor {sensor:.1} mm vs README's p90 {sensor_p90}"
+        );
     }
     let e = learners::build("no-such-learner", scenario, &reference)
         .err()

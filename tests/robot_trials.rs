@@ -39,34 +39,42 @@ fn bits(p: Option<Polynomial>) -> Vec<u64> {
         .unwrap_or_default()
 }
 
+/// README's default `train` has `scasm`'s action model at 0.45x A0's error
+/// and its sensor model at 52 mm, means over 15 trials (std 4.1 mm/s and 25
+/// mm). Six trials on development seeds, against the same claim with the
+/// margin their mean's sampling spread needs (twice the standard error, 0.13x
+/// A0 and 20 mm): a mean under 0.6x A0 and 75 mm, and every trial better
+/// than A0.
 #[test]
-fn a_trial_learns_both_models() {
+fn trials_learn_both_models_as_readme_says() {
     let (scenario, models) = setup();
+    let seeds: Vec<u64> = (100..106).collect();
+    let results = experiment::run_trials(scenario, models, &seeds, &|_, _| {});
     let reference = models.reference();
-    let mut learner = Scasm::default();
-    let out = trial::run_trial(
-        &scenario.description,
-        scenario.sim,
-        config(0, 150.0),
-        &mut learner,
-        &reference,
-    )
-    .expect("trial");
-    assert!(!out.fell, "the robot tipped over");
     let a0 = metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
-    let action = out.last.action_rmse_mm_s.expect("action model learned");
-    assert!(
-        action < 0.75 * a0,
-        "action error {action:.1} mm/s vs A0's {a0:.1}"
+    let (mut action, mut sensor) = (Vec::new(), Vec::new());
+    for (seed, result) in &results {
+        let (recording, out) = result.as_ref().expect("the trial runs");
+        assert!(!recording.fell(), "seed {seed}: the robot tipped over");
+        let a = out.last.action_rmse_mm_s.expect("action model learned");
+        assert!(
+            a < a0,
+            "seed {seed}: action error {a:.1} mm/s vs A0's {a0:.1}"
+        );
+        action.push(a);
+        sensor.push(out.last.sensor_rmse_mm.expect("sensor model learned"));
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let (a, s) = (mean(&action), mean(&sensor));
+    eprintln!(
+        "mean action {a:.1} mm/s ({:.2}x A0), sensor {s:.1} mm",
+        a / a0
     );
-    // The sensor model has no A0; its baseline is the raw reading under its best
-    // affine map, the best any model linear in pixels could do.
-    let raw = metrics::sensor_error(&Polynomial::identity(), &reference.sensor).rmse;
-    let sensor = out.last.sensor_rmse_mm.expect("sensor model learned");
     assert!(
-        sensor < 0.75 * raw,
-        "sensor error {sensor:.1} mm vs the raw reading's {raw:.1}"
+        a < 0.6 * a0,
+        "mean action error {a:.1} mm/s vs A0's {a0:.1}"
     );
+    assert!(s < 75.0, "mean sensor error {s:.1} mm");
 }
 
 #[test]

@@ -2,7 +2,9 @@
 //! driven by the walk engine, and the ground-truth queries a testbed may make.
 //! The robot moves only by its feet pushing on the floor.
 
-use rapier3d::dynamics::{JointAxis, MotorModel, MultibodyJointHandle, RigidBodyHandle};
+use rapier3d::dynamics::{
+    JointAxis, JointMotor, MotorModel, Multibody, MultibodyJointHandle, RigidBodyHandle,
+};
 use rapier3d::geometry::ColliderBuilder;
 use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::pipeline::PhysicsWorld;
@@ -567,7 +569,7 @@ impl QuadrupedSim {
             for (k, h) in handles.iter().enumerate() {
                 let i = 3 * leg + k;
                 if let Some((mb, id)) = self.world.multibody_joints.get_mut(*h) {
-                    if let Some(motor) = mb.link_motor_mut(id, JointAxis::AngX) {
+                    if let Some(motor) = angular_motor(mb, id) {
                         motor.target_pos = self.servos.positions()[i] as Real;
                         motor.target_vel = self.servos.velocities()[i] as Real;
                         motor.stiffness = s.kp_nm_per_rad as Real;
@@ -837,4 +839,20 @@ impl QuadrupedSim {
     pub fn world(&self) -> &PhysicsWorld {
         &self.world
     }
+}
+
+/// Link `id`'s angular joint motor, to set its targets. With the patched
+/// rapier3d, `link_motor_mut`, which leaves the multibody's kinematics valid.
+#[cfg(not(feature = "upstream-rapier"))]
+fn angular_motor(mb: &mut Multibody, id: usize) -> Option<&mut JointMotor> {
+    mb.link_motor_mut(id, JointAxis::AngX)
+}
+
+/// Link `id`'s angular joint motor, through `link_mut`: rapier3d as published
+/// (feature `upstream-rapier`, used only to record the upstream fixture; the
+/// patched crate computes the same step either way).
+#[cfg(feature = "upstream-rapier")]
+fn angular_motor(mb: &mut Multibody, id: usize) -> Option<&mut JointMotor> {
+    mb.link_mut(id)
+        .map(|link| &mut link.joint.data.motors[JointAxis::AngX as usize])
 }

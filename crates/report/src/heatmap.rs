@@ -307,6 +307,7 @@ mod tests {
                         mean,
                         std: Figures::filled(0.0),
                         quantiles: [mean; 3],
+                        counted: Figures::filled(1.0),
                     });
                 }
             }

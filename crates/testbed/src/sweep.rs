@@ -179,7 +179,7 @@ pub fn shard(runs: Vec<Run>, k: usize, n: usize) -> Vec<Run> {
 }
 
 /// The statistics `sweep_summary.csv` has of each figure, in column order.
-pub const SUMMARY_STATISTICS: [&str; 5] = ["mean", "std", "median", "p10", "p90"];
+pub const SUMMARY_STATISTICS: [&str; 6] = ["mean", "std", "median", "p10", "p90", "n"];
 
 fn metric_values(f: &Figures) -> impl Iterator<Item = f64> + '_ {
     Figures::FIELDS.iter().map(move |field| (field.get)(f))
@@ -206,6 +206,10 @@ pub struct CombinationSummary {
     pub std: Figures,
     /// Median, 10th and 90th percentiles over them (NaN if none).
     pub quantiles: [Figures; 3],
+    /// How many `ok` runs each figure's statistics are over (those where it
+    /// is defined: a re-convergence time is not where a model never came
+    /// back).
+    pub counted: Figures,
 }
 
 /// One finished run's row.
@@ -378,6 +382,7 @@ impl Results {
                     mean: a.mean,
                     std: a.std,
                     quantiles: [a.median, a.p10, a.p90],
+                    counted: a.counted,
                 }
             })
             .collect()
@@ -386,7 +391,7 @@ impl Results {
     /// Writes `sweep_summary.csv` into `dir`, whole: per combination, the number
     /// of runs that finished ok, that did not, and that finished ok but worse
     /// than their start, and each metric's mean, std, median, p10 and p90
-    /// over the ok ones.
+    /// over the ok ones, and `n`, how many of them those are over.
     pub fn write_summary(&self, dir: &Path) -> Result<(), SweepError> {
         let path = dir.join("sweep_summary.csv");
         let mut h: Vec<String> = self.keys.clone();
@@ -408,7 +413,7 @@ impl Results {
                 cells.push(g.runs_worse_than_start.to_string());
                 let [median, p10, p90] = &g.quantiles;
                 for field in Figures::FIELDS {
-                    for f in [&g.mean, &g.std, median, p10, p90] {
+                    for f in [&g.mean, &g.std, median, p10, p90, &g.counted] {
                         cells.push((field.get)(f).to_string());
                     }
                 }
