@@ -11,8 +11,8 @@ use plotters::prelude::*;
 use testbed::benchmark::Cell;
 use testbed::summary::Figures;
 
-use crate::plot::{FONT, colours, draw_error, encode_png, register_font};
-use crate::{ReportError, write_atomic};
+use crate::ReportError;
+use crate::plot::{Drawing, FONT, colours, register_font, save_png_and_svg};
 
 /// Pixel size of a spread chart.
 pub const SIZE: (u32, u32) = (960, 560);
@@ -77,21 +77,7 @@ impl SpreadChart {
 
     /// Writes `<stem>.png` and `<stem>.svg`, each whole or not at all.
     pub fn save(&self, stem: &Path) -> Result<(), ReportError> {
-        register_font()?;
-        let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-            self.draw(&root).map_err(draw_error)?;
-            root.present().map_err(draw_error)?;
-        }
-        write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
-        let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
-        {
-            let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
-            self.draw(&root).map_err(draw_error)?;
-            root.present().map_err(draw_error)?;
-        }
-        write_atomic(&stem.with_extension("png"), &encode_png(&rgb, SIZE)?)
+        save_png_and_svg(self, SIZE, stem)
     }
 
     /// Draws the chart on `root`.
@@ -214,6 +200,15 @@ pub fn save_ratios(
     }
     .save(&dir.join(stem))?;
     Ok(stem.to_string())
+}
+
+impl Drawing for SpreadChart {
+    fn draw_on<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        self.draw(root)
+    }
 }
 
 #[cfg(test)]
