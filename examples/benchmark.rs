@@ -22,6 +22,7 @@ use testbed::provenance::Provenance;
 use testbed::reference::{self, MeasuredModels};
 use testbed::scenario;
 use testbed::summary;
+use testbed::sweep;
 
 /// Benchmark learners across a suite of scenarios.
 #[derive(Debug, Parser)]
@@ -53,6 +54,14 @@ struct Args {
     /// Where measured reference models are cached.
     #[arg(long, default_value = "runs/.cache")]
     cache: PathBuf,
+    /// Run only shard K of N (1-based) of the (scenario, seed) worlds, e.g.
+    /// 3/8; `auto` takes K and N from the Slurm array task it runs in.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Merge these benchmark directories' leaderboard.csv into --out instead
+    /// of running (with the same --learners, --scenarios and --seeds).
+    #[arg(long, num_args = 1..)]
+    merge: Vec<PathBuf>,
 }
 
 fn main() -> Result<()> {
@@ -103,55 +112,25 @@ fn main() -> Result<()> {
             slot.insert(reference::measured_models(&s.scenario, Some(&args.cache))?);
         }
     }
-    let mut jobs: Vec<Job<'_>> = Vec::new();
-    for s in &suite {
-        let models = &references[&s.scenario.reference_key()];
-        for &seed in &seeds {
-            for l in &learners {
-                jobs.push(Job {
-                    scenario: &s.scenario,
-                    models,
-                    seed,
-                    learner: l,
-                });
-            }
-        }
-    }
-    println!(
-        "{} learners x {} scenarios x {} seeds = {} trials ({} worlds to simulate) on {} threads",
-        learners.len(),
-        suite.len(),
-        seeds.len(),
-        jobs.len(),
-        suite.len() * seeds.len(),
-        rayon::current_num_threads()
-    );
-    let scenario_of = |job: &Job<'_>| {
-        suite
+    let mut entries = if args.merge.is_empty() {
+        run(&args, &suite, &references, &learners, &seeds)?
+    } else {
+        let parts = args
+            .merge
             .iter()
-            .find(|s| std::ptr::eq(&s.scenario, job.scenario))
-            .map_or(String::new(), |s| s.name.clone())
+            .map(|dir| {
+                let path = dir.join("leaderboard.csv");
+                benchmark::read_leaderboard_csv(&path).map(|e| (path.display().to_string(), e))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let merged = benchmark::merge_entries(parts)?;
+        println!(
+            "merged {} entries from {} directories",
+            merged.len(),
+            args.merge.len()
+        );
+        merged
     };
-    let bar = scasm_testbed::progress_bar(jobs.len() as u64, "trials");
-    let entries = Mutex::new(Vec::new());
-    experiment::run_jobs(&jobs, &|i, result| {
-        let job = &jobs[i];
-        let best = summary::best_possible(&job.models.reference(), &job.scenario.learner);
-        let (seed, status, figures) =
-            summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
-        if let Ok(mut v) = entries.lock() {
-            v.push(Entry {
-                learner: job.learner.to_string(),
-                scenario: scenario_of(job),
-                seed,
-                status,
-                figures,
-            });
-        }
-        bar.inc(1);
-    });
-    bar.finish();
-    let mut entries = entries.into_inner().unwrap_or_else(|p| p.into_inner());
     let order = |e: &Entry| {
         (
             suite.iter().position(|s| s.name == e.scenario),
@@ -264,4 +243,76 @@ fn main() -> Result<()> {
         out.display()
     );
     Ok(())
+}
+
+/// Runs the benchmark's jobs (this shard's, with --shard) and returns their
+/// entries.
+fn run(
+    args: &Args,
+    suite: &[benchmark::SuiteScenario],
+    references: &BTreeMap<String, MeasuredModels>,
+    learners: &[String],
+    seeds: &[u64],
+) -> Result<Vec<Entry>> {
+    let mut jobs: Vec<Job<'_>> = Vec::new();
+    let worlds = match &args.shard {
+        Some(spec) => {
+            let (k, n) = sweep::parse_shard_spec(spec, |name| std::env::var(name).ok())?;
+            let worlds = benchmark::shard_worlds(suite.len(), seeds, k, n);
+            println!(
+                "shard {k}/{n}: {} of {} worlds",
+                worlds.len(),
+                suite.len() * seeds.len()
+            );
+            worlds
+        }
+        None => benchmark::shard_worlds(suite.len(), seeds, 1, 1),
+    };
+    for &(i, seed) in &worlds {
+        let s = &suite[i];
+        let models = &references[&s.scenario.reference_key()];
+        for l in learners {
+            jobs.push(Job {
+                scenario: &s.scenario,
+                models,
+                seed,
+                learner: l,
+            });
+        }
+    }
+    println!(
+        "{} learners x {} scenarios x {} seeds = {} trials ({} worlds to simulate) on {} threads",
+        learners.len(),
+        suite.len(),
+        seeds.len(),
+        jobs.len(),
+        worlds.len(),
+        rayon::current_num_threads()
+    );
+    let scenario_of = |job: &Job<'_>| {
+        suite
+            .iter()
+            .find(|s| std::ptr::eq(&s.scenario, job.scenario))
+            .map_or(String::new(), |s| s.name.clone())
+    };
+    let bar = scasm_testbed::progress_bar(jobs.len() as u64, "trials");
+    let entries = Mutex::new(Vec::new());
+    experiment::run_jobs(&jobs, &|i, result| {
+        let job = &jobs[i];
+        let best = summary::best_possible(&job.models.reference(), &job.scenario.learner);
+        let (seed, status, figures) =
+            summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
+        if let Ok(mut v) = entries.lock() {
+            v.push(Entry {
+                learner: job.learner.to_string(),
+                scenario: scenario_of(job),
+                seed,
+                status,
+                figures,
+            });
+        }
+        bar.inc(1);
+    });
+    bar.finish();
+    Ok(entries.into_inner().unwrap_or_else(|p| p.into_inner()))
 }

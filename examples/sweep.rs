@@ -40,7 +40,8 @@ struct Args {
     /// [learner.name].
     #[arg(long)]
     learner: Option<String>,
-    /// Run only shard K of N (1-based), e.g. 3/8.
+    /// Run only shard K of N (1-based), e.g. 3/8; `auto` takes K and N from
+    /// the Slurm array task it runs in (SLURM_ARRAY_TASK_ID, _MIN, _COUNT).
     #[arg(long)]
     shard: Option<String>,
     /// Merge these sweeps' results into --out instead of running.
@@ -247,7 +248,7 @@ fn main() -> Result<()> {
     let mut runs = sweep::runs(&axes, &seeds);
     let total = runs.len();
     if let Some(spec) = &args.shard {
-        let (k, n) = sweep::parse_shard(spec)?;
+        let (k, n) = sweep::parse_shard_spec(spec, |name| std::env::var(name).ok())?;
         runs = sweep::shard(runs, k, n);
         println!("shard {k}/{n}: {} of {total} runs", runs.len());
     }

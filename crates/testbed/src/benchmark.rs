@@ -113,6 +113,109 @@ pub fn write_leaderboard_csv(path: &Path, entries: &[Entry]) -> std::io::Result<
     )
 }
 
+/// A `leaderboard.csv` that cannot be read back.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}: {reason}")]
+pub struct LeaderboardError {
+    /// The file.
+    pub path: String,
+    /// What is wrong, with the line.
+    pub reason: String,
+}
+
+/// Reads back what [`write_leaderboard_csv`] wrote: figures by column name (a
+/// figure the file lacks is NaN; a column this version does not know, a
+/// truncated line or a bad number is an error naming the file and line).
+pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError> {
+    let error = |reason: String| LeaderboardError {
+        path: path.display().to_string(),
+        reason,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| error(e.to_string()))?;
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let n = head.len();
+    if n < 6
+        || head[..3] != ["learner", "scenario", "seed"]
+        || head[n - 2..] != ["worse_than_start", "status"]
+    {
+        return Err(error(format!(
+            "columns `{}` are not a leaderboard's",
+            head.join(",")
+        )));
+    }
+    let fields: Vec<&'static crate::summary::Field> = head[3..n - 2]
+        .iter()
+        .map(|c| {
+            Figures::field(c)
+                .ok_or_else(|| error(format!("column `{c}` is not a figure this version knows")))
+        })
+        .collect::<Result<_, _>>()?;
+    let mut entries = Vec::new();
+    for (k, line) in lines.enumerate() {
+        let bad = |reason: String| error(format!("line {}: {reason}", k + 2));
+        let cells: Vec<&str> = line.split(',').collect();
+        if cells.len() != n {
+            return Err(bad(format!(
+                "{} cells where the header has {n} columns (a truncated or damaged file?)",
+                cells.len()
+            )));
+        }
+        let mut figures = Figures::filled(f64::NAN);
+        for (field, cell) in fields.iter().zip(&cells[3..n - 2]) {
+            *(field.get_mut)(&mut figures) = cell
+                .parse()
+                .map_err(|_| bad(format!("`{cell}` in column {} is not a number", field.name)))?;
+        }
+        entries.push(Entry {
+            learner: cells[0].to_string(),
+            scenario: cells[1].to_string(),
+            seed: cells[2]
+                .parse()
+                .map_err(|_| bad(format!("`{}` is not a seed", cells[2])))?,
+            status: TrialStatus::parse(cells[n - 1]),
+            figures,
+        });
+    }
+    Ok(entries)
+}
+
+/// Shard `k` of `n` of a benchmark's worlds, `(scenario index, seed)` in
+/// scenario-major order: every `n`-th from the `k`-th. A world is never split,
+/// so it is still simulated once for all its learners; shards are disjoint
+/// and together cover every world.
+pub fn shard_worlds(scenarios: usize, seeds: &[u64], k: usize, n: usize) -> Vec<(usize, u64)> {
+    (0..scenarios)
+        .flat_map(|s| seeds.iter().map(move |&seed| (s, seed)))
+        .enumerate()
+        .filter(|(i, _)| i % n == k - 1)
+        .map(|(_, w)| w)
+        .collect()
+}
+
+/// The entries of several shards' leaderboards as one, refusing an entry
+/// (learner, scenario, seed) that two of them hold.
+pub fn merge_entries(parts: Vec<(String, Vec<Entry>)>) -> Result<Vec<Entry>, LeaderboardError> {
+    let mut seen: std::collections::BTreeMap<(String, String, u64), String> = Default::default();
+    let mut out = Vec::new();
+    for (source, entries) in parts {
+        for e in entries {
+            let key = (e.learner.clone(), e.scenario.clone(), e.seed);
+            if let Some(first) = seen.insert(key, source.clone()) {
+                return Err(LeaderboardError {
+                    path: source,
+                    reason: format!(
+                        "{} on {} seed {} is also in {first}: shards must be disjoint",
+                        e.learner, e.scenario, e.seed
+                    ),
+                });
+            }
+            out.push(e);
+        }
+    }
+    Ok(out)
+}
+
 /// One (learner, scenario) cell: its trials aggregated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
@@ -256,4 +359,69 @@ pub fn below_paper(cells: &[Cell], ranges: &dyn Fn(&str) -> (f64, f64)) -> Vec<S
                 .then(|| format!("{} on {}: {}", c.learner, c.scenario, misses.join(", ")))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn entry(learner: &str, seed: u64, action: f64) -> Entry {
+        Entry {
+            learner: learner.into(),
+            scenario: "default".into(),
+            seed,
+            status: TrialStatus::Ok,
+            figures: Figures {
+                action_rmse_mm_s: action,
+                ..Figures::filled(f64::NAN)
+            },
+        }
+    }
+
+    #[test]
+    fn world_shards_are_disjoint_and_cover_every_world() {
+        let seeds = [3, 4, 5, 6, 7];
+        for n in 1..=4 {
+            let mut all: Vec<(usize, u64)> = (1..=n)
+                .flat_map(|k| shard_worlds(3, &seeds, k, n))
+                .collect();
+            all.sort_unstable();
+            assert_eq!(all, shard_worlds(3, &seeds, 1, 1), "{n} shards");
+            assert_eq!(all.len(), 15);
+        }
+    }
+
+    #[test]
+    fn a_leaderboard_reads_back_as_written_and_shards_merge_only_when_disjoint() {
+        let dir = std::env::temp_dir().join(format!("leaderboard-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("leaderboard.csv");
+        let entries = vec![entry("scasm", 1, 12.5), entry("batch-ml", 1, 0.1 + 0.2)];
+        write_leaderboard_csv(&path, &entries).expect("write");
+        let back = read_leaderboard_csv(&path).expect("read");
+        assert_eq!(back.len(), 2);
+        assert_eq!(
+            back[1].figures.action_rmse_mm_s.to_bits(),
+            (0.1f64 + 0.2).to_bits()
+        );
+        assert!(back[0].figures.sensor_rmse_mm.is_nan());
+        let merged = merge_entries(vec![
+            ("a".into(), back.clone()),
+            ("b".into(), vec![entry("scasm", 2, 9.0)]),
+        ])
+        .expect("disjoint");
+        assert_eq!(merged.len(), 3);
+        let e = merge_entries(vec![("a".into(), back.clone()), ("b".into(), back)])
+            .expect_err("the same entries twice")
+            .to_string();
+        assert!(e.contains("scasm on default seed 1 is also in a"), "{e}");
+        // Truncated mid-line: refused, naming the file and the line.
+        let text = std::fs::read_to_string(&path).expect("text");
+        std::fs::write(&path, &text[..text.len() - 9]).expect("truncate");
+        let e = read_leaderboard_csv(&path)
+            .expect_err("truncated")
+            .to_string();
+        assert!(e.contains("leaderboard.csv: line 3"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

@@ -27,8 +27,11 @@ pub enum SweepError {
     #[error(transparent)]
     Setting(#[from] SettingError),
     /// `--shard K/N` is malformed.
-    #[error("bad shard `{0}`: expected K/N with 1 <= K <= N")]
+    #[error("bad shard `{0}`: expected K/N with 1 <= K <= N, or auto")]
     Shard(String),
+    /// `--shard auto` outside a Slurm array task, or in one it cannot map.
+    #[error("--shard auto: {0}")]
+    ShardAuto(String),
     /// A results file cannot be read or written.
     #[error("{path}: {reason}")]
     File {
@@ -166,6 +169,55 @@ pub fn parse_shard(spec: &str) -> Result<(usize, usize), SweepError> {
         return Err(bad());
     }
     Ok((k, n))
+}
+
+/// The Slurm array variables `--shard auto` reads.
+pub const SLURM_ARRAY_VARIABLES: [&str; 3] = [
+    "SLURM_ARRAY_TASK_ID",
+    "SLURM_ARRAY_TASK_MIN",
+    "SLURM_ARRAY_TASK_COUNT",
+];
+
+/// `K/N`, or `auto`: in a task of a Slurm array job (`sbatch --array=A-B`),
+/// shard `ID - MIN + 1` of `COUNT`, from `SLURM_ARRAY_TASK_ID`,
+/// `SLURM_ARRAY_TASK_MIN` and `SLURM_ARRAY_TASK_COUNT` as `env` gives them
+/// (the process environment, in a real run). A requeued task keeps its
+/// variables, so it runs the same shard again. An array with gaps or a step
+/// (`--array=1,3,5`) cannot be mapped and is an error that says so.
+pub fn parse_shard_spec(
+    spec: &str,
+    env: impl Fn(&str) -> Option<String>,
+) -> Result<(usize, usize), SweepError> {
+    if spec.trim() != "auto" {
+        return parse_shard(spec);
+    }
+    let [id, min, count] = SLURM_ARRAY_VARIABLES.map(|name| {
+        env(name).ok_or_else(|| {
+            SweepError::ShardAuto(format!(
+                "{name} is not set: run it as a task of a Slurm array job (sbatch --array=1-N), \
+                 or give --shard K/N"
+            ))
+        })
+    });
+    let number = |name: &str, v: Result<String, SweepError>| -> Result<usize, SweepError> {
+        let v = v?;
+        v.trim()
+            .parse()
+            .map_err(|_| SweepError::ShardAuto(format!("{name}={v} is not a whole number")))
+    };
+    let (id, min, count) = (
+        number("SLURM_ARRAY_TASK_ID", id)?,
+        number("SLURM_ARRAY_TASK_MIN", min)?,
+        number("SLURM_ARRAY_TASK_COUNT", count)?,
+    );
+    let k = id.checked_sub(min).map(|d| d + 1);
+    match k {
+        Some(k) if k <= count && count > 0 => Ok((k, count)),
+        _ => Err(SweepError::ShardAuto(format!(
+            "task {id} of an array from {min} with {count} tasks is not one of 1..{count}: \
+             an array with gaps or a step cannot be split automatically; give --shard K/N"
+        ))),
+    }
 }
 
 /// Shard `k` of `n`: every `n`-th run from the `k`-th. Shards are disjoint and
@@ -445,5 +497,49 @@ fn file_error(path: &Path, e: std::io::Error) -> SweepError {
     SweepError::File {
         path: path.display().to_string(),
         reason: e.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod shard_tests {
+    use super::*;
+
+    fn env<'a>(vars: &'a [(&'a str, &'a str)]) -> impl Fn(&str) -> Option<String> + 'a {
+        move |name| {
+            vars.iter()
+                .find(|(k, _)| *k == name)
+                .map(|(_, v)| v.to_string())
+        }
+    }
+
+    #[test]
+    fn shard_auto_reads_the_slurm_array_task() {
+        let task = |id, min, count| {
+            [
+                ("SLURM_ARRAY_TASK_ID", id),
+                ("SLURM_ARRAY_TASK_MIN", min),
+                ("SLURM_ARRAY_TASK_COUNT", count),
+            ]
+        };
+        assert_eq!(
+            parse_shard_spec("auto", env(&task("3", "1", "4"))).ok(),
+            Some((3, 4))
+        );
+        // A zero-based array: task 0 is shard 1.
+        assert_eq!(
+            parse_shard_spec("auto", env(&task("0", "0", "4"))).ok(),
+            Some((1, 4))
+        );
+        assert_eq!(parse_shard_spec("2/5", env(&[])).ok(), Some((2, 5)));
+        let e = parse_shard_spec("auto", env(&[]))
+            .expect_err("no array")
+            .to_string();
+        assert!(e.contains("SLURM_ARRAY_TASK_ID is not set"), "{e}");
+        // --array=1,3,5: task 5 of three cannot be mapped.
+        let e = parse_shard_spec("auto", env(&task("5", "1", "3")))
+            .expect_err("gaps")
+            .to_string();
+        assert!(e.contains("give --shard K/N"), "{e}");
+        assert!(parse_shard_spec("auto", env(&task("x", "1", "3"))).is_err());
     }
 }
