@@ -124,6 +124,25 @@ fn main() -> Result<()> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         let merged = benchmark::merge_entries(parts)?;
+        // Every merged entry must be one this benchmark's tables show.
+        if let Some(e) = merged
+            .iter()
+            .find(|e| !suite.iter().any(|s| s.name == e.scenario) || !learners.contains(&e.learner))
+        {
+            bail!(
+                "--merge: {} on {} seed {} is not among --learners {} and --scenarios {}; \
+                 merge with the flags the shards ran with",
+                e.learner,
+                e.scenario,
+                e.seed,
+                learners.join(","),
+                suite
+                    .iter()
+                    .map(|s| s.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(",")
+            );
+        }
         println!(
             "merged {} entries from {} directories",
             merged.len(),
