@@ -8,6 +8,7 @@
 
 pub mod behaviour;
 pub mod benchmark;
+pub mod blanks;
 pub mod dataset;
 pub mod demos;
 pub mod experiment;

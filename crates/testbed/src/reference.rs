@@ -135,6 +135,14 @@ pub fn key(scenario: &Scenario) -> String {
     format!("{:016x}", h.finish())
 }
 
+impl Scenario {
+    /// A key identifying what the measured reference depends on (robot, world,
+    /// controllers, camera and the protocols; not the learner): [`key`].
+    pub fn reference_key(&self) -> String {
+        key(self)
+    }
+}
+
 /// The measured models as stored in the cache.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct CachedReference {

@@ -88,7 +88,7 @@ pub struct Scenario {
     /// The seeds of a run's trials, `first..end` (end excluded).
     pub seeds: (u64, u64),
     /// When the camera sees no beacon.
-    pub blank: crate::trial::Blanks,
+    pub blank: crate::blanks::Blanks,
     /// Changes of the world during each trial, in time order.
     pub changes: Vec<Change>,
 }
@@ -172,7 +172,7 @@ impl Scenario {
             urdf_path: None,
             robot_file: None,
             sim: SimConfig::default(),
-            learner_name: crate::learners::DEFAULT.into(),
+            learner_name: crate::learners::registry::DEFAULT.into(),
             learner: ScasmConfig::default(),
             mode: LearningMode::Simultaneous,
             duration_s: PAPER_DURATION_S,
@@ -467,10 +467,12 @@ impl Scenario {
                 }
             }
             "learner.name" => {
-                if !crate::learners::names().any(|n| n == value) {
+                if !crate::learners::registry::names().any(|n| n == value) {
                     return Err(bad(format!(
                         "unknown learner `{value}`; known: {}",
-                        crate::learners::names().collect::<Vec<_>>().join(", ")
+                        crate::learners::registry::names()
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     )));
                 }
                 self.learner_name = value.into();
@@ -489,7 +491,7 @@ impl Scenario {
             "camera.vfov_deg" => self.sim.camera.intrinsics.vfov_deg = number()?,
             "camera.frame_period_s" => self.sim.camera.frame_period_s = number()?,
             "camera.blank_s" => {
-                self.blank = crate::trial::Blanks::parse(value, self.duration_s).map_err(bad)?;
+                self.blank = crate::blanks::Blanks::parse(value, self.duration_s).map_err(bad)?;
             }
             "world.start_distance_m" => self.sim.start_distance_m = number()?,
             "world.friction" => self.sim.friction = number()?,
@@ -626,12 +628,6 @@ impl Scenario {
     /// The largest walk command, mm/s: the paper's 300 at the robot's scale.
     pub fn max_command(&self) -> f64 {
         300.0 * self.scale().speed()
-    }
-
-    /// A key identifying what the measured reference depends on (robot, world,
-    /// controllers, camera and the protocols; not the learner).
-    pub fn reference_key(&self) -> String {
-        crate::reference::key(self)
     }
 }
 

@@ -7,39 +7,13 @@ use scasm::{
     BatchMl, BatchMlConfig, CalibrationLearner, Mode, Polynomial, Scasm, ScasmConfig, SensorFit,
 };
 
+pub mod registry;
+
 use crate::metrics;
 use crate::reference::Reference;
 use crate::scenario::{LearningMode, Scenario};
 
-/// The learner a run uses unless told otherwise.
-pub const DEFAULT: &str = "scasm";
-
-/// Each learner's name and what it is.
-pub const LEARNERS: [(&str, &str); 4] = [
-    (
-        "scasm-paper",
-        "SCASM exactly as the paper has it: every reading its own point of the sensor fit",
-    ),
-    (
-        "scasm",
-        "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, 5)",
-    ),
-    (
-        "scasm-eiv",
-        "SCASM whose sensor fit corrects for the reading noise, estimated from the readings: \
-         no errors-in-variables bias",
-    ),
-    (
-        "batch-ml",
-        "maximum likelihood over the whole trial: path, A and the forward sensor model jointly, \
-         started from scasm-eiv, its own last solution and the readings' pinhole path",
-    ),
-];
-
-/// The learners' names, in the order above.
-pub fn names() -> impl Iterator<Item = &'static str> {
-    LEARNERS.iter().map(|l| l.0)
-}
+pub use registry::{DEFAULT, LEARNERS, names};
 
 /// A learner a host can own and send between threads.
 pub type BoxedLearner = Box<dyn CalibrationLearner + Send>;
