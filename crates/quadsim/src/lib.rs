@@ -13,6 +13,7 @@
 
 pub mod beacon;
 pub mod camera;
+pub mod config;
 pub mod description;
 pub mod error;
 pub mod gait;
@@ -26,11 +27,12 @@ pub mod sim;
 pub mod vision;
 pub mod walk;
 
+pub use config::SimConfig;
 pub use description::{LEG_NAMES, RobotDescription};
 pub use error::{RobotError, SimConfigError, SimError};
 pub use robot_file::RobotFile;
 pub use scale::RobotScale;
-pub use sim::{QuadrupedSim, SimConfig, TorsoState};
+pub use sim::{QuadrupedSim, TorsoState};
 pub use vision::{CameraConfig, Frame, NoReading};
 
 /// The default robot description shipped in `assets/ers7.urdf`.

@@ -32,10 +32,10 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
+use crate::config::SimConfig;
 use crate::description::{CameraMount, RobotDescription, RobotMap};
 use crate::error::RobotError;
 use crate::gait::{GaitParams, GaitTable};
-use crate::sim::SimConfig;
 
 /// The shipped robots: name, robot file, URDF file name and URDF text.
 const SHIPPED: [(&str, &str, &str); 2] = [

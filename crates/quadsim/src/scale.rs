@@ -21,8 +21,8 @@
 
 use std::sync::OnceLock;
 
+use crate::config::SimConfig;
 use crate::description::RobotDescription;
-use crate::sim::SimConfig;
 
 /// A robot's size relative to the shipped ERS-7.
 #[derive(Debug, Clone, Copy, PartialEq)]
