@@ -59,17 +59,27 @@ PY
 }
 rows() { echo $(($(wc -l < "$1") - 1)); }
 
+# Runs KIND (sweep or benchmark) with FLAGS unsharded, and through submit.sh
+# as an array of TASKS and the merge into $work/NAME; checks that the merged
+# CSV has the unsharded one's rows.
+sharded_as_unsharded() {
+    local kind=$1 tasks=$2 name=$3 csv=$4 submitted array merge
+    shift 4
+    "target/release/examples/$kind" "$@" --out "$work/$name-unsharded" > "$work/$name-unsharded.log"
+    submitted=$(scripts/slurm/submit.sh "$kind" "$tasks" "$work/$name" "$@" | tail -n 1)
+    echo "$submitted"
+    array=$(sed -nE 's/.*array job ([0-9]+).*/\1/p' <<< "$submitted")
+    merge=$(sed -nE 's/.*merge job ([0-9]+).*/\1/p' <<< "$submitted")
+    wait_job "$array" 300
+    wait_job "$merge" 120
+    [ "$(state "$merge")" = COMPLETED ] ||
+        fail "the $kind merge job ended $(state "$merge"): $(cat "$work/$name/logs/merge.out")"
+    same_rows "$work/$name-unsharded/$csv" "$work/$name/$csv"
+}
+
 echo "== 1. the README's sweep as an array job, then the merge"
-grid=(--gamma 0.99,0.999 --t-start 2,4 --seeds 0..2 --set trial.duration=12 --cache "$cache")
-target/release/examples/sweep "${grid[@]}" --out "$work/sweep-unsharded" > "$work/sweep-unsharded.log"
-submitted=$(scripts/slurm/submit.sh sweep 3 "$work/sweep" "${grid[@]}" | tail -n 1)
-echo "$submitted"
-array=$(sed -nE 's/.*array job ([0-9]+).*/\1/p' <<< "$submitted")
-merge=$(sed -nE 's/.*merge job ([0-9]+).*/\1/p' <<< "$submitted")
-wait_job "$array" 300
-wait_job "$merge" 120
-[ "$(state "$merge")" = COMPLETED ] || fail "the merge job ended $(state "$merge"): $(cat "$work/sweep/logs/merge.out")"
-same_rows "$work/sweep-unsharded/sweep.csv" "$work/sweep/sweep.csv"
+sharded_as_unsharded sweep 3 sweep sweep.csv \
+    --gamma 0.99,0.999 --t-start 2,4 --seeds 0..2 --set trial.duration=12 --cache "$cache"
 
 echo "== 2. a task killed mid-run, requeued as the same element, resumes"
 long=(--gamma 0.99,0.999 --seeds 0..6 --set trial.duration=200 --cache "$cache")
@@ -113,14 +123,6 @@ wait_job "$array" 120
 grep -F "$csv" "$work/long/logs/shard-2.out" || fail "the error does not name $csv: $(cat "$work/long/logs/shard-2.out")"
 
 echo "== 4. the benchmark as an array job, then the merge"
-bench=(--scenarios default,noisy_camera --learners scasm,batch-ml --seeds 0..3 --set trial.duration=12 --cache "$cache")
-target/release/examples/benchmark "${bench[@]}" --out "$work/bench-unsharded" > "$work/bench-unsharded.log"
-submitted=$(scripts/slurm/submit.sh benchmark 2 "$work/bench" "${bench[@]}" | tail -n 1)
-echo "$submitted"
-array=$(sed -nE 's/.*array job ([0-9]+).*/\1/p' <<< "$submitted")
-merge=$(sed -nE 's/.*merge job ([0-9]+).*/\1/p' <<< "$submitted")
-wait_job "$array" 300
-wait_job "$merge" 120
-[ "$(state "$merge")" = COMPLETED ] || fail "the benchmark's merge ended $(state "$merge"): $(cat "$work/bench/logs/merge.out")"
-same_rows "$work/bench-unsharded/leaderboard.csv" "$work/bench/leaderboard.csv"
+sharded_as_unsharded benchmark 2 bench leaderboard.csv --scenarios default,noisy_camera \
+    --learners scasm,batch-ml --seeds 0..3 --set trial.duration=12 --cache "$cache"
 echo "the Slurm check passed"
