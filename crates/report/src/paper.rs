@@ -13,7 +13,7 @@ use testbed::reference::MeasuredModels;
 use testbed::trial::{TraceRow, TrialOutcome};
 
 use crate::ReportError;
-use crate::plot::{Chart, Mark, Series, colours};
+use crate::plot::{Chart, Drawing, Mark, Series, colours};
 
 /// What the figures are drawn from.
 #[derive(Debug, Clone, Copy)]

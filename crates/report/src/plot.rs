@@ -132,14 +132,12 @@ impl Chart {
         }
         (padded(&xs), padded(&ys))
     }
+}
 
-    /// Writes `<stem>.png` and `<stem>.svg`, each whole or not at all.
-    pub fn save(&self, stem: &Path) -> Result<(), ReportError> {
-        save_png_and_svg(self, SIZE, stem)
-    }
+impl Drawing for Chart {
+    const SIZE: (u32, u32) = SIZE;
 
-    /// Draws the chart on `root`.
-    pub fn draw<DB: DrawingBackend>(
+    fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
@@ -234,46 +232,37 @@ impl Chart {
     }
 }
 
-/// A picture drawn the same way on any plotters backend.
-pub(crate) trait Drawing {
+/// A picture drawn the same way on any plotters backend, and written as PNG
+/// and SVG by [`Drawing::save`], the one place pictures become files.
+pub trait Drawing {
+    /// Its size in pixels.
+    const SIZE: (u32, u32);
+
     /// Draws it on `root`.
-    fn draw_on<DB: DrawingBackend>(
+    fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>;
-}
 
-impl Drawing for Chart {
-    fn draw_on<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        self.draw(root)
+    /// Writes `<stem>.svg` and `<stem>.png`, each whole or not at all.
+    fn save(&self, stem: &Path) -> Result<(), ReportError> {
+        register_font()?;
+        let size = Self::SIZE;
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+            self.draw(&root).map_err(draw_error)?;
+            root.present().map_err(draw_error)?;
+        }
+        write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
+        let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
+            self.draw(&root).map_err(draw_error)?;
+            root.present().map_err(draw_error)?;
+        }
+        write_atomic(&stem.with_extension("png"), &encode_png(&rgb, size)?)
     }
-}
-
-/// Writes `drawing` of `size` to `<stem>.svg` and `<stem>.png`, each whole or
-/// not at all: the one place pictures become files.
-pub(crate) fn save_png_and_svg(
-    drawing: &impl Drawing,
-    size: (u32, u32),
-    stem: &Path,
-) -> Result<(), ReportError> {
-    register_font()?;
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
-        drawing.draw_on(&root).map_err(draw_error)?;
-        root.present().map_err(draw_error)?;
-    }
-    write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
-    let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
-        drawing.draw_on(&root).map_err(draw_error)?;
-        root.present().map_err(draw_error)?;
-    }
-    write_atomic(&stem.with_extension("png"), &encode_png(&rgb, size)?)
 }
 
 /// `[min, max]` of the finite values, padded by 4 % (a unit interval if none).

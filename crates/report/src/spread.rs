@@ -12,7 +12,7 @@ use testbed::benchmark::Cell;
 use testbed::summary::Figures;
 
 use crate::ReportError;
-use crate::plot::{Drawing, FONT, colours, register_font, save_png_and_svg};
+use crate::plot::{Drawing, FONT, colours, register_font};
 
 /// Pixel size of a spread chart.
 pub const SIZE: (u32, u32) = (960, 560);
@@ -74,14 +74,12 @@ impl SpreadChart {
             (lo / 1.25, hi * 1.25)
         }
     }
+}
 
-    /// Writes `<stem>.png` and `<stem>.svg`, each whole or not at all.
-    pub fn save(&self, stem: &Path) -> Result<(), ReportError> {
-        save_png_and_svg(self, SIZE, stem)
-    }
+impl Drawing for SpreadChart {
+    const SIZE: (u32, u32) = SIZE;
 
-    /// Draws the chart on `root`.
-    pub fn draw<DB: DrawingBackend>(
+    fn draw<DB: DrawingBackend>(
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
@@ -200,15 +198,6 @@ pub fn save_ratios(
     }
     .save(&dir.join(stem))?;
     Ok(stem.to_string())
-}
-
-impl Drawing for SpreadChart {
-    fn draw_on<DB: DrawingBackend>(
-        &self,
-        root: &DrawingArea<DB, Shift>,
-    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        self.draw(root)
-    }
 }
 
 #[cfg(test)]
