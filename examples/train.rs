@@ -76,7 +76,9 @@ fn write_demos(dir: &Path, demos: &Demos) -> Result<()> {
 
 fn main() -> Result<()> {
     let args = Args::parse();
-    if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref()) {
+    if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref())
+        || scasm_testbed::list_settings_if_asked(&args.scenario.set)
+    {
         return Ok(());
     }
     args.rerun.check()?;

@@ -24,7 +24,8 @@ pub struct ScenarioArgs {
     /// config.toml); --set and the flags below override it.
     #[arg(long)]
     pub config: Option<PathBuf>,
-    /// A setting as key=value (repeatable), e.g. learner.gamma=0.995.
+    /// A setting as key=value (repeatable), e.g. learner.gamma=0.995;
+    /// `list` prints them all.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }
@@ -195,9 +196,17 @@ pub fn list_learners_if_asked(learner: Option<&str>) -> bool {
     if learner != Some("list") {
         return false;
     }
-    for name in testbed::learners::names() {
-        println!("{name}");
+    print!("{}", testbed::learners::describe(None));
+    true
+}
+
+/// Prints every setting, its type, default and what it does, if `--set list`
+/// was given; says whether it did.
+pub fn list_settings_if_asked(set: &[String]) -> bool {
+    if !set.iter().any(|s| s == "list") {
+        return false;
     }
+    print!("{}", testbed::scenario::describe_settings());
     true
 }
 

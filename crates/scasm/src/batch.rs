@@ -45,10 +45,14 @@
 //! out, which bounds N (about 13 800 frames at gamma 0.999) and makes the cost
 //! O(T) after that.
 
+use std::boxed::Box;
+use std::string::ToString;
+use std::vec;
 use std::vec::Vec;
 
 use crate::MAX_REGRESSORS;
-use crate::config::{ScasmConfig, ScasmParams};
+use crate::config::{ScasmConfig, ScasmParams, SensorFit};
+use crate::declaration::{BuildContext, Declaration, Kind, Setting};
 use crate::error::{ConfigError, EventError};
 use crate::learner::{CalibrationLearner, Event};
 use crate::poly_fit::PolynomialFit;
@@ -138,6 +142,85 @@ impl BatchMlConfig {
         }
         Ok(BatchMlParams(self))
     }
+}
+
+/// The batch learner as a host declares it (see [`crate::declaration`]): its
+/// own settings are [`BatchMlConfig`]'s, the shared ones its online start's.
+pub const BATCH_ML: Declaration = Declaration {
+    name: "batch-ml",
+    about: "maximum likelihood over the whole trial: path, A and the forward sensor model \
+            jointly, started from scasm-eiv, its own last solution and the readings' pinhole path",
+    shared: &[
+        "gamma",
+        "beta",
+        "t_start",
+        "sensor_degree",
+        "action_degree",
+        "sensor_window",
+        "forward_degree",
+    ],
+    settings: batch_settings,
+    one_sided: false,
+    build: |c: &BuildContext| {
+        let own = &c.own;
+        let params = BatchMlConfig {
+            online: ScasmConfig {
+                sensor_fit: SensorFit::Corrected,
+                ..c.shared
+            },
+            gamma: own.get("gamma"),
+            solve_every_s: own.get("solve_every_s"),
+            iterations: own.count("iterations"),
+            process_noise: own.get("process_noise"),
+            transient_noise: own.get("transient_noise"),
+        }
+        .validate()
+        .map_err(|e| e.to_string())?;
+        Ok(Box::new(BatchMl::new(params)))
+    },
+};
+
+/// [`BATCH_ML`]'s own settings, with [`BatchMlConfig::default`]'s values.
+fn batch_settings() -> Vec<Setting> {
+    let d = BatchMlConfig::default();
+    let positive = (0.0, true, f64::INFINITY);
+    vec![
+        Setting::new(
+            "gamma",
+            Kind::Number,
+            d.gamma,
+            (0.0, true, 1.0),
+            "forgetting per frame of the batch fit (1: the whole trial weighs alike)",
+        ),
+        Setting::new(
+            "solve_every_s",
+            Kind::Number,
+            d.solve_every_s,
+            positive,
+            "how often the whole fit is solved again, s of the trial",
+        ),
+        Setting::new(
+            "iterations",
+            Kind::Count,
+            d.iterations as f64,
+            (1.0, false, 1000.0),
+            "Levenberg-Marquardt iterations per solve",
+        ),
+        Setting::new(
+            "process_noise",
+            Kind::Number,
+            d.process_noise,
+            positive,
+            "process noise per frame, as a fraction of the typical speed times the frame's length",
+        ),
+        Setting::new(
+            "transient_noise",
+            Kind::Number,
+            d.transient_noise,
+            positive,
+            "how much larger the process noise is within half a second of a change of command",
+        ),
+    ]
 }
 
 /// Checked [`BatchMlConfig`].
@@ -370,7 +453,7 @@ impl BatchMl {
 }
 
 impl CalibrationLearner for BatchMl {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         "batch-ml"
     }
 

@@ -129,4 +129,8 @@ pub enum EventError {
         /// The learner's clock (end of the last command interval).
         clock_s: f64,
     },
+    /// The learner has failed and takes no more events (see
+    /// [`crate::CalibrationLearner::failure`] for why).
+    #[error("the learner has failed")]
+    Failed,
 }

@@ -53,8 +53,9 @@ pub enum Event {
 /// # Ok::<(), scasm::EventError>(())
 /// ```
 pub trait CalibrationLearner {
-    /// A short name for reports and command lines.
-    fn name(&self) -> &'static str;
+    /// A short name for reports and command lines: its declaration's, or
+    /// the variant its settings make it.
+    fn name(&self) -> &str;
     /// Takes one event, or refuses it and changes nothing.
     fn handle(&mut self, event: Event) -> Result<(), EventError>;
     /// The current action model (command -> location units per second), if any yet.
@@ -65,4 +66,12 @@ pub trait CalibrationLearner {
     fn x_a(&self) -> Option<f64>;
     /// The location the sensor model gave for the latest reading (`x_s`).
     fn x_s(&self) -> Option<f64>;
+    /// Why the learner can no longer take part, if it cannot: a learner in
+    /// another process that died, broke its protocol or stopped answering.
+    /// Once it fails, its events are refused ([`EventError::Failed`]) and its
+    /// queries answer `None`; a host ends the trial and reports this reason.
+    /// A learner in the host's own process never fails (the default).
+    fn failure(&self) -> Option<&str> {
+        None
+    }
 }

@@ -32,6 +32,8 @@ mod action_fit;
 #[cfg(feature = "std")]
 mod batch;
 mod config;
+#[cfg(feature = "std")]
+pub mod declaration;
 mod eiv_fit;
 mod error;
 mod learner;
@@ -45,11 +47,13 @@ mod wls;
 pub const MAX_REGRESSORS: usize = 8;
 
 #[cfg(feature = "std")]
-pub use batch::{BatchMl, BatchMlConfig, BatchMlParams};
+pub use batch::{BATCH_ML, BatchMl, BatchMlConfig, BatchMlParams};
 pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
 pub use polynomial::{MAX_COEFFS, Polynomial};
+#[cfg(feature = "std")]
+pub use scasm::declarations::{SCASM, SCASM_EIV, SCASM_PAPER};
 pub use scasm::{Mode, Scasm};
 
 #[cfg(test)]

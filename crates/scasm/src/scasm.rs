@@ -314,8 +314,14 @@ fn finite(field: &'static str, value: f64) -> Result<(), EventError> {
 }
 
 impl CalibrationLearner for Scasm {
-    fn name(&self) -> &'static str {
-        "scasm"
+    /// The variant its settings make it: `scasm-eiv` (noise-corrected sensor
+    /// fit), `scasm-paper` (every reading its own point) or `scasm`.
+    fn name(&self) -> &str {
+        match (self.params.sensor_fit(), self.params.sensor_window()) {
+            (SensorFit::Corrected, _) => "scasm-eiv",
+            (SensorFit::Inverse, 1) => "scasm-paper",
+            (SensorFit::Inverse, _) => "scasm",
+        }
     }
 
     fn handle(&mut self, event: Event) -> Result<(), EventError> {
@@ -346,4 +352,80 @@ impl CalibrationLearner for Scasm {
     fn x_s(&self) -> Option<f64> {
         self.x_s
     }
+}
+
+/// The SCASM variants as a host declares them (see [`crate::declaration`]).
+#[cfg(feature = "std")]
+pub mod declarations {
+    use std::boxed::Box;
+    use std::string::ToString;
+    use std::vec::Vec;
+
+    use super::{Mode, Scasm};
+    use crate::config::{ScasmConfig, SensorFit};
+    use crate::declaration::{BoxedLearner, BuildContext, Declaration};
+
+    /// The shared settings every variant reads.
+    const COMMON: [&str; 5] = ["gamma", "beta", "t_start", "sensor_degree", "action_degree"];
+
+    fn build(config: ScasmConfig, mode: Mode) -> Result<BoxedLearner, std::string::String> {
+        let params = config.validate().map_err(|e| e.to_string())?;
+        Ok(Box::new(
+            Scasm::new(params, mode).map_err(|e| e.to_string())?,
+        ))
+    }
+
+    /// The paper's algorithm exactly.
+    pub const SCASM_PAPER: Declaration = Declaration {
+        name: "scasm-paper",
+        about: "SCASM exactly as the paper has it: every reading its own point of the sensor fit",
+        shared: &COMMON,
+        settings: Vec::new,
+        one_sided: true,
+        build: |c: &BuildContext| {
+            build(
+                ScasmConfig {
+                    sensor_window: 1,
+                    ..c.shared
+                },
+                c.mode,
+            )
+        },
+    };
+
+    /// SCASM with the sensor fit's readings averaged in windows.
+    pub const SCASM: Declaration = Declaration {
+        name: "scasm",
+        about: "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, 5)",
+        shared: &[
+            "gamma",
+            "beta",
+            "t_start",
+            "sensor_degree",
+            "action_degree",
+            "sensor_window",
+        ],
+        settings: Vec::new,
+        one_sided: true,
+        build: |c: &BuildContext| build(c.shared, c.mode),
+    };
+
+    /// SCASM whose sensor fit corrects for the reading noise.
+    pub const SCASM_EIV: Declaration = Declaration {
+        name: "scasm-eiv",
+        about: "SCASM whose sensor fit corrects for the reading noise, estimated from the \
+                readings: no errors-in-variables bias",
+        shared: SCASM.shared,
+        settings: Vec::new,
+        one_sided: true,
+        build: |c: &BuildContext| {
+            build(
+                ScasmConfig {
+                    sensor_fit: SensorFit::Corrected,
+                    ..c.shared
+                },
+                c.mode,
+            )
+        },
+    };
 }

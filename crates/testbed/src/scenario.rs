@@ -2,10 +2,12 @@
 //! camera, learner settings, trial length), built from defaults, a scenario file
 //! and `key=value` settings, each checked at the door.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use quadsim::{RobotDescription, RobotFile, RobotScale, SimConfig, SimError};
 use scasm::ScasmConfig;
+use scasm::declaration::Values;
 use serde::{Deserialize, Serialize};
 
 /// A setting that could not be applied.
@@ -79,8 +81,13 @@ pub struct Scenario {
     pub sim: SimConfig,
     /// The learner's name (see [`crate::learners`]).
     pub learner_name: String,
-    /// The learner's hyper-parameters.
+    /// The shared learner settings (`learner.gamma`, the degrees, ...).
     pub learner: ScasmConfig,
+    /// Learners' own settings as set, by full key (`learner.batch-ml.gamma`);
+    /// a learner's settings not here have their declared defaults.
+    pub learner_own: BTreeMap<String, f64>,
+    /// How long a learner program may take to answer, s.
+    pub answer_timeout_s: f64,
     /// What is learned from what.
     pub mode: LearningMode,
     /// Trial length, s.
@@ -122,42 +129,287 @@ enum Kind {
     Text,
 }
 
-/// Every setting: its key and type. `--set`, scenario files and a run's
-/// `config.toml` all use these.
-const SETTINGS: [(&str, Kind); 28] = [
-    ("robot.file", Kind::Text),
-    ("robot.urdf", Kind::Text),
-    ("trial.duration", Kind::Number),
-    ("trial.seeds", Kind::Text),
-    ("trial.mode", Kind::Text),
-    ("learner.name", Kind::Text),
-    ("learner.gamma", Kind::Number),
-    ("learner.beta", Kind::Number),
-    ("learner.t_start", Kind::Number),
-    ("learner.sensor_degree", Kind::Count),
-    ("learner.action_degree", Kind::Count),
-    ("learner.sensor_window", Kind::Count),
-    ("learner.forward_degree", Kind::Count),
-    ("camera.noise_px", Kind::Number),
-    ("camera.width_px", Kind::Count),
-    ("camera.height_px", Kind::Count),
-    ("camera.hfov_deg", Kind::Number),
-    ("camera.vfov_deg", Kind::Number),
-    ("camera.frame_period_s", Kind::Number),
-    ("camera.blank_s", Kind::Text),
-    ("world.friction", Kind::Number),
-    ("world.start_distance_m", Kind::Number),
-    ("servo.torque_scale", Kind::Number),
-    ("servo.speed_scale", Kind::Number),
-    ("beacon.height_m", Kind::Number),
-    ("beacon.centre_m", Kind::Number),
-    ("beacon.radius_m", Kind::Number),
-    ("physics.dt", Kind::Number),
+/// One setting of the scenario: its key, type and a line of doc, and how it
+/// is written and read. [`SETTINGS`] and the learners' declarations are the
+/// one table that `--set`, scenario files, a run's `config.toml` and
+/// `--set list` all read.
+struct Entry {
+    key: &'static str,
+    kind: Kind,
+    doc: &'static str,
+    set: fn(&mut Scenario, &str) -> Result<(), String>,
+    get: fn(&Scenario) -> toml::Value,
+}
+
+fn number(value: &str) -> Result<f64, String> {
+    let v: f64 = value.parse().map_err(|e| format!("`{value}`: {e}"))?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("`{value}` is not finite"))
+    }
+}
+
+fn count<T: std::str::FromStr<Err: std::fmt::Display>>(value: &str) -> Result<T, String> {
+    value.parse().map_err(|e| format!("`{value}`: {e}"))
+}
+
+/// A number setting of the world, by where it lives in [`SimConfig`].
+macro_rules! world_number {
+    ($key:literal, $doc:literal, $($field:ident).+) => {
+        Entry {
+            key: $key,
+            kind: Kind::Number,
+            doc: $doc,
+            set: |s, v| {
+                s.sim.$($field).+ = number(v)?;
+                Ok(())
+            },
+            get: |s| toml::Value::Float(s.sim.$($field).+),
+        }
+    };
+}
+
+/// Every setting of the robot, trial, camera, world and host; the learners'
+/// settings (`learner.*`) are declared by the learners.
+const SETTINGS: [Entry; 22] = [
+    Entry {
+        key: "robot.file",
+        kind: Kind::Text,
+        doc: "a robot file (a shipped robot's name or a path): its URDF, gait and scale",
+        set: Scenario::set_robot_file,
+        get: |s| {
+            toml::Value::String(
+                s.robot_file
+                    .as_ref()
+                    .map_or_else(String::new, |(name, _)| name.clone()),
+            )
+        },
+    },
+    Entry {
+        key: "robot.urdf",
+        kind: Kind::Text,
+        doc: "a URDF file of a quadruped, walked with the current gait",
+        set: Scenario::set_urdf,
+        get: |s| {
+            toml::Value::String(
+                s.urdf_path
+                    .as_ref()
+                    .map_or_else(String::new, |p| p.display().to_string()),
+            )
+        },
+    },
+    Entry {
+        key: "trial.duration",
+        kind: Kind::Number,
+        doc: "trial length, s",
+        set: Scenario::set_duration,
+        get: |s| toml::Value::Float(s.duration_s),
+    },
+    Entry {
+        key: "trial.seeds",
+        kind: Kind::Text,
+        doc: "the seeds of a run's trials, A..B (B excluded)",
+        set: |s, v| {
+            s.seeds = parse_seeds(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::String(format!("{}..{}", s.seeds.0, s.seeds.1)),
+    },
+    Entry {
+        key: "trial.mode",
+        kind: Kind::Text,
+        doc: "what is learned from what: simultaneous, sensor-from-action, action-from-sensor",
+        set: |s, v| {
+            s.mode = LearningMode::parse(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.mode.as_str().into()),
+    },
+    Entry {
+        key: "learner.name",
+        kind: Kind::Text,
+        doc: "the learner: a built-in's name, or exec:COMMAND for a program (--learner list)",
+        set: |s, v| {
+            crate::learners::registry::resolve(v)?;
+            s.learner_name = v.into();
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.learner_name.clone()),
+    },
+    Entry {
+        key: "exec.answer_timeout_s",
+        kind: Kind::Number,
+        doc: "how long a learner program may take to answer, s",
+        set: |s, v| {
+            let t = number(v)?;
+            if !(t > 0.0 && t <= 3600.0) {
+                return Err(format!("{t} s must be in (0, 3600]"));
+            }
+            s.answer_timeout_s = t;
+            Ok(())
+        },
+        get: |s| toml::Value::Float(s.answer_timeout_s),
+    },
+    world_number!(
+        "camera.noise_px",
+        "reading noise, px (standard deviation)",
+        camera.noise_px
+    ),
+    Entry {
+        key: "camera.width_px",
+        kind: Kind::Count,
+        doc: "image width, px",
+        set: |s, v| {
+            s.sim.camera.intrinsics.width_px = count(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::Integer(s.sim.camera.intrinsics.width_px.into()),
+    },
+    Entry {
+        key: "camera.height_px",
+        kind: Kind::Count,
+        doc: "image height, px",
+        set: |s, v| {
+            s.sim.camera.intrinsics.height_px = count(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::Integer(s.sim.camera.intrinsics.height_px.into()),
+    },
+    world_number!(
+        "camera.hfov_deg",
+        "horizontal field of view, degrees",
+        camera.intrinsics.hfov_deg
+    ),
+    world_number!(
+        "camera.vfov_deg",
+        "vertical field of view, degrees",
+        camera.intrinsics.vfov_deg
+    ),
+    world_number!(
+        "camera.frame_period_s",
+        "time between readings, s",
+        camera.frame_period_s
+    ),
+    Entry {
+        key: "camera.blank_s",
+        kind: Kind::Text,
+        doc: "intervals with no reading, A-B,C-D (s)",
+        set: |s, v| {
+            s.blank = crate::blanks::Blanks::parse(v, s.duration_s)?;
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.blank.to_text()),
+    },
+    world_number!(
+        "world.friction",
+        "the ground's friction coefficient",
+        friction
+    ),
+    world_number!(
+        "world.start_distance_m",
+        "the robot's start, m from the beacon",
+        start_distance_m
+    ),
+    world_number!(
+        "servo.torque_scale",
+        "the servos' torque, times the robot's",
+        servo.torque_scale
+    ),
+    world_number!(
+        "servo.speed_scale",
+        "the servos' speed, times the robot's",
+        servo.speed_scale
+    ),
+    world_number!(
+        "beacon.height_m",
+        "the beacon's coloured band's height, m",
+        beacon.band_height_m
+    ),
+    world_number!(
+        "beacon.centre_m",
+        "the band's centre above the ground, m",
+        beacon.band_centre_m
+    ),
+    world_number!("beacon.radius_m", "the beacon's radius, m", beacon.radius_m),
+    world_number!("physics.dt", "the physics step, s", dt_s),
 ];
 
-/// The settings `--set` understands, in the order `config.toml` writes them.
-pub fn setting_keys() -> impl Iterator<Item = &'static str> {
-    SETTINGS.iter().map(|s| s.0)
+/// The settings `--set` understands besides a learner's own
+/// (`learner.<name>.<key>`): the scenario's, then the shared learner ones.
+pub fn setting_keys() -> impl Iterator<Item = String> {
+    SETTINGS.iter().map(|e| e.key.to_string()).chain(
+        scasm::declaration::SHARED
+            .iter()
+            .map(|s| format!("learner.{}", s.key)),
+    )
+}
+
+/// Every setting with its type and a line of doc: what `--set list` prints.
+pub fn describe_settings() -> String {
+    let defaults = Scenario::paper().ok();
+    let mut out = String::new();
+    for e in &SETTINGS {
+        let value = defaults
+            .as_ref()
+            .map(e.get)
+            .map_or_else(String::new, |v| v.to_string());
+        out += &format!(
+            "{:<26} {:<7} {:<14} {}\n",
+            e.key,
+            kind_name(e.kind),
+            value,
+            e.doc
+        );
+    }
+    for s in &scasm::declaration::SHARED {
+        let setting = s.setting(&ScasmConfig::default());
+        out += &format!(
+            "{:<26} {:<7} {:<14} {} (in {})\n",
+            format!("learner.{}", s.key),
+            kind_name(if s.kind == scasm::declaration::Kind::Count {
+                Kind::Count
+            } else {
+                Kind::Number
+            }),
+            setting.default,
+            s.doc,
+            setting.range()
+        );
+    }
+    out += "learner.<name>.<key>       each learner's own: see --learner list\n";
+    out
+}
+
+fn kind_name(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Number => "number",
+        Kind::Count => "count",
+        Kind::Text => "text",
+    }
+}
+
+impl LearningMode {
+    fn parse(text: &str) -> Result<Self, String> {
+        Ok(match text {
+            "simultaneous" => Self::Simultaneous,
+            "sensor-from-action" => Self::SensorFromAction,
+            "action-from-sensor" => Self::ActionFromSensor,
+            other => {
+                return Err(format!(
+                    "`{other}`; known: simultaneous, sensor-from-action, action-from-sensor"
+                ));
+            }
+        })
+    }
+
+    fn as_str(self) -> &'static str {
+        match self {
+            Self::Simultaneous => "simultaneous",
+            Self::SensorFromAction => "sensor-from-action",
+            Self::ActionFromSensor => "action-from-sensor",
+        }
+    }
 }
 
 impl Scenario {
@@ -174,6 +426,8 @@ impl Scenario {
             sim: SimConfig::default(),
             learner_name: crate::learners::registry::DEFAULT.into(),
             learner: ScasmConfig::default(),
+            learner_own: BTreeMap::new(),
+            answer_timeout_s: crate::learners::exec::ANSWER_TIMEOUT_S,
             mode: LearningMode::Simultaneous,
             duration_s: PAPER_DURATION_S,
             seeds: (0, 15),
@@ -217,7 +471,14 @@ impl Scenario {
         // The robot first, then the trial (a blanked interval is checked
         // against the trial's length), then the rest, each in the order given.
         let mut ordered: Vec<&String> = settings.iter().collect();
-        ordered.sort_by_key(|s| section_rank(s.trim_start().split('.').next().unwrap_or("")));
+        ordered.sort_by_key(|s| {
+            let key = s.split('=').next().unwrap_or("").trim();
+            // The learner is named before its own settings are set.
+            (
+                section_rank(key.split('.').next().unwrap_or("")),
+                key != "learner.name",
+            )
+        });
         for s in ordered {
             scenario.set(s)?;
         }
@@ -249,9 +510,24 @@ impl Scenario {
                     "`{section}` must be a [section] of settings"
                 )));
             };
+            // A learner's own settings are a table within (`[learner.batch-ml]`);
+            // the learner is named first, so that a program's settings are known.
+            let mut flat: Vec<(String, &toml::Value)> = Vec::new();
             for (key, value) in entries {
-                let full = format!("{section}.{key}");
-                let kind = SETTINGS.iter().find(|s| s.0 == full).map(|s| s.1);
+                match value {
+                    toml::Value::Table(inner) => {
+                        flat.extend(
+                            inner
+                                .iter()
+                                .map(|(k, v)| (format!("{section}.{key}.{k}"), v)),
+                        );
+                    }
+                    v => flat.push((format!("{section}.{key}"), v)),
+                }
+            }
+            flat.sort_by_key(|(full, _)| full != "learner.name");
+            for (full, value) in flat {
+                let kind = SETTINGS.iter().find(|e| e.key == full).map(|e| e.kind);
                 let value = match (value, kind) {
                     (toml::Value::String(text), Some(Kind::Text) | None) => text.clone(),
                     (toml::Value::Integer(i), Some(Kind::Number | Kind::Count) | None) => {
@@ -385,128 +661,25 @@ impl Scenario {
             key: key.into(),
             reason,
         };
-        let number = || -> Result<f64, SettingError> {
-            let v: f64 = value.parse().map_err(|e| bad(format!("`{value}`: {e}")))?;
-            if v.is_finite() {
-                Ok(v)
-            } else {
-                Err(bad(format!("`{value}` is not finite")))
-            }
-        };
-        let count = || -> Result<usize, SettingError> {
-            value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
-        };
-        let pixels = || -> Result<u32, SettingError> {
-            value.parse().map_err(|e| bad(format!("`{value}`: {e}")))
-        };
-        match key {
-            "robot.file" => {
-                let robot = RobotFile::load(value).map_err(|e| SettingError::File {
-                    file: value.into(),
-                    reason: e.to_string(),
-                })?;
-                // Its gait was checked within the legs' reach as it was read.
-                let sim = robot.sim_config();
-                // The paper's experiment at the robot's scale: its commands,
-                // trial length and the learner's time constants scale too.
-                let scale = RobotScale::of(&robot.description);
-                let paper = ScasmConfig::default();
-                self.learner = ScasmConfig {
-                    command_scale: paper.command_scale * scale.speed(),
-                    ..paper.time_scaled(scale.time())
-                };
-                self.duration_s = PAPER_DURATION_S * scale.time();
-                self.sim = sim;
-                self.description = robot.description;
-                self.urdf_text = robot.urdf_text;
-                self.urdf_path = None;
-                self.robot_file = Some((value.into(), robot.text));
-            }
-            "robot.urdf" => {
-                let (text, description) = read_urdf(Path::new(value))?;
-                // A robot that cannot walk the gait is refused here, naming
-                // its file, rather than in every trial.
-                quadsim::walk::WalkEngine::check_feasible(&self.sim.walk, &description.legs)
-                    .map_err(|e| SettingError::File {
-                        file: value.into(),
-                        reason: e.to_string(),
-                    })?;
-                self.description = description;
-                self.urdf_text = text;
-                self.urdf_path = Some(PathBuf::from(value));
-                self.robot_file = None;
-            }
-            "trial.duration" => {
-                let d = number()?;
-                if !(d > 0.0 && d <= MAX_DURATION_S) {
-                    return Err(bad(format!(
-                        "{d} s must be in (0, {MAX_DURATION_S}]: a trial keeps every 50 ms \
-                         frame in memory"
-                    )));
+        if let Some(entry) = SETTINGS.iter().find(|e| e.key == key) {
+            (entry.set)(self, value).map_err(bad)?;
+        } else if let Some(name) = key.strip_prefix("learner.") {
+            match name.split_once('.') {
+                None => {
+                    let shared = scasm::declaration::shared(name).ok_or_else(|| unknown(key))?;
+                    let v = shared
+                        .setting(&self.learner)
+                        .check(number(value).map_err(bad)?)
+                        .map_err(bad)?;
+                    (shared.set)(&mut self.learner, v);
                 }
-                if let Some(&(_, end)) = self.blank.intervals().last() {
-                    if end > d {
-                        return Err(bad(format!(
-                            "{d} s ends before camera.blank_s's interval ending at {end} s"
-                        )));
-                    }
-                }
-                self.duration_s = d;
-            }
-            "trial.seeds" => self.seeds = parse_seeds(value).map_err(bad)?,
-            "trial.mode" => {
-                self.mode = match value {
-                    "simultaneous" => LearningMode::Simultaneous,
-                    "sensor-from-action" => LearningMode::SensorFromAction,
-                    "action-from-sensor" => LearningMode::ActionFromSensor,
-                    other => {
-                        return Err(bad(format!(
-                            "`{other}`; known: simultaneous, sensor-from-action, action-from-sensor"
-                        )));
-                    }
+                Some((learner, own)) => {
+                    let v = number(value).map_err(bad)?;
+                    self.set_own(learner, own, v).map_err(bad)?;
                 }
             }
-            "learner.name" => {
-                if !crate::learners::registry::names().any(|n| n == value) {
-                    return Err(bad(format!(
-                        "unknown learner `{value}`; known: {}",
-                        crate::learners::registry::names()
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    )));
-                }
-                self.learner_name = value.into();
-            }
-            "learner.gamma" => self.learner.gamma = number()?,
-            "learner.beta" => self.learner.beta = number()?,
-            "learner.t_start" => self.learner.t_start_s = number()?,
-            "learner.sensor_degree" => self.learner.sensor_degree = count()?,
-            "learner.action_degree" => self.learner.action_degree = count()?,
-            "learner.sensor_window" => self.learner.sensor_window = count()?,
-            "learner.forward_degree" => self.learner.forward_degree = count()?,
-            "camera.noise_px" => self.sim.camera.noise_px = number()?,
-            "camera.width_px" => self.sim.camera.intrinsics.width_px = pixels()?,
-            "camera.height_px" => self.sim.camera.intrinsics.height_px = pixels()?,
-            "camera.hfov_deg" => self.sim.camera.intrinsics.hfov_deg = number()?,
-            "camera.vfov_deg" => self.sim.camera.intrinsics.vfov_deg = number()?,
-            "camera.frame_period_s" => self.sim.camera.frame_period_s = number()?,
-            "camera.blank_s" => {
-                self.blank = crate::blanks::Blanks::parse(value, self.duration_s).map_err(bad)?;
-            }
-            "world.start_distance_m" => self.sim.start_distance_m = number()?,
-            "world.friction" => self.sim.friction = number()?,
-            "servo.torque_scale" => self.sim.servo.torque_scale = number()?,
-            "servo.speed_scale" => self.sim.servo.speed_scale = number()?,
-            "beacon.centre_m" => self.sim.beacon.band_centre_m = number()?,
-            "beacon.radius_m" => self.sim.beacon.radius_m = number()?,
-            "beacon.height_m" => self.sim.beacon.band_height_m = number()?,
-            "physics.dt" => self.sim.dt_s = number()?,
-            _ => {
-                return Err(SettingError::UnknownKey {
-                    key: key.into(),
-                    known: setting_keys().collect::<Vec<_>>().join(", "),
-                });
-            }
+        } else {
+            return Err(unknown(key));
         }
         // Catch range errors at the door, naming the key.
         self.learner.validate().map_err(|e| bad(e.to_string()))?;
@@ -517,56 +690,146 @@ impl Scenario {
         Ok(())
     }
 
+    /// Sets `learner.<learner>.<key>`: a setting that learner declares, in
+    /// its range.
+    fn set_own(&mut self, learner: &str, key: &str, value: f64) -> Result<(), String> {
+        let found = crate::learners::registry::named(learner).ok_or_else(|| {
+            format!(
+                "no learner is called `{learner}`; known: {} (a program's settings follow \
+                 learner.name=exec:... or --learner exec:...)",
+                crate::learners::registry::names()
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })?;
+        let settings = found.settings();
+        let setting = settings.iter().find(|s| s.key == key).ok_or_else(|| {
+            let keys: Vec<&str> = settings.iter().map(|s| s.key.as_str()).collect();
+            format!(
+                "learner `{learner}` has no setting `{key}`; its settings: {}",
+                if keys.is_empty() {
+                    "none of its own (it reads the shared learner.* ones)".into()
+                } else {
+                    keys.join(", ")
+                }
+            )
+        })?;
+        let v = setting.check(value)?;
+        self.learner_own
+            .insert(format!("learner.{learner}.{key}"), v);
+        Ok(())
+    }
+
+    /// The values of `learner`'s own settings in this scenario: each as set,
+    /// or its default.
+    pub fn own_settings(&self, learner: &crate::learners::registry::Learner) -> Values {
+        Values(
+            learner
+                .settings()
+                .into_iter()
+                .map(|s| {
+                    let full = format!("learner.{}.{}", learner.name(), s.key);
+                    let v = self.learner_own.get(&full).copied().unwrap_or(s.default);
+                    (s.key, v)
+                })
+                .collect(),
+        )
+    }
+
+    fn set_robot_file(&mut self, value: &str) -> Result<(), String> {
+        let robot = RobotFile::load(value).map_err(|e| format!("{value}: {e}"))?;
+        // Its gait was checked within the legs' reach as it was read.
+        let sim = robot.sim_config();
+        // The paper's experiment at the robot's scale: its commands, trial
+        // length and the learner's time constants scale too.
+        let scale = RobotScale::of(&robot.description);
+        let paper = ScasmConfig::default();
+        self.learner = ScasmConfig {
+            command_scale: paper.command_scale * scale.speed(),
+            ..paper.time_scaled(scale.time())
+        };
+        self.duration_s = PAPER_DURATION_S * scale.time();
+        self.sim = sim;
+        self.description = robot.description;
+        self.urdf_text = robot.urdf_text;
+        self.urdf_path = None;
+        self.robot_file = Some((value.into(), robot.text));
+        Ok(())
+    }
+
+    fn set_urdf(&mut self, value: &str) -> Result<(), String> {
+        let (text, description) = read_urdf(Path::new(value)).map_err(|e| e.to_string())?;
+        // A robot that cannot walk the gait is refused here, naming its
+        // file, rather than in every trial.
+        quadsim::walk::WalkEngine::check_feasible(&self.sim.walk, &description.legs)
+            .map_err(|e| format!("{value}: {e}"))?;
+        self.description = description;
+        self.urdf_text = text;
+        self.urdf_path = Some(PathBuf::from(value));
+        self.robot_file = None;
+        Ok(())
+    }
+
+    fn set_duration(&mut self, value: &str) -> Result<(), String> {
+        let d = number(value)?;
+        if !(d > 0.0 && d <= MAX_DURATION_S) {
+            return Err(format!(
+                "{d} s must be in (0, {MAX_DURATION_S}]: a trial keeps every 50 ms frame in memory"
+            ));
+        }
+        if let Some(&(_, end)) = self.blank.intervals().last() {
+            if end > d {
+                return Err(format!(
+                    "{d} s ends before camera.blank_s's interval ending at {end} s"
+                ));
+            }
+        }
+        self.duration_s = d;
+        Ok(())
+    }
+
     /// The value of a setting, as a scenario file writes it.
     pub fn get(&self, key: &str) -> Option<toml::Value> {
-        use toml::Value::{Float, Integer, String as Text};
-        let count = |n: usize| Integer(n as i64);
-        Some(match key {
-            "robot.file" => Text(
-                self.robot_file
-                    .as_ref()
-                    .map_or_else(String::new, |(name, _)| name.clone()),
-            ),
-            "robot.urdf" => Text(
-                self.urdf_path
-                    .as_ref()
-                    .map_or_else(String::new, |p| p.display().to_string()),
-            ),
-            "trial.duration" => Float(self.duration_s),
-            "trial.seeds" => Text(format!("{}..{}", self.seeds.0, self.seeds.1)),
-            "trial.mode" => Text(
-                match self.mode {
-                    LearningMode::Simultaneous => "simultaneous",
-                    LearningMode::SensorFromAction => "sensor-from-action",
-                    LearningMode::ActionFromSensor => "action-from-sensor",
-                }
-                .into(),
-            ),
-            "learner.name" => Text(self.learner_name.clone()),
-            "learner.gamma" => Float(self.learner.gamma),
-            "learner.beta" => Float(self.learner.beta),
-            "learner.t_start" => Float(self.learner.t_start_s),
-            "learner.sensor_degree" => count(self.learner.sensor_degree),
-            "learner.action_degree" => count(self.learner.action_degree),
-            "learner.sensor_window" => count(self.learner.sensor_window),
-            "learner.forward_degree" => count(self.learner.forward_degree),
-            "camera.noise_px" => Float(self.sim.camera.noise_px),
-            "camera.width_px" => Integer(self.sim.camera.intrinsics.width_px.into()),
-            "camera.height_px" => Integer(self.sim.camera.intrinsics.height_px.into()),
-            "camera.hfov_deg" => Float(self.sim.camera.intrinsics.hfov_deg),
-            "camera.vfov_deg" => Float(self.sim.camera.intrinsics.vfov_deg),
-            "camera.frame_period_s" => Float(self.sim.camera.frame_period_s),
-            "camera.blank_s" => Text(self.blank.to_text()),
-            "world.start_distance_m" => Float(self.sim.start_distance_m),
-            "world.friction" => Float(self.sim.friction),
-            "servo.torque_scale" => Float(self.sim.servo.torque_scale),
-            "servo.speed_scale" => Float(self.sim.servo.speed_scale),
-            "beacon.centre_m" => Float(self.sim.beacon.band_centre_m),
-            "beacon.radius_m" => Float(self.sim.beacon.radius_m),
-            "beacon.height_m" => Float(self.sim.beacon.band_height_m),
-            "physics.dt" => Float(self.sim.dt_s),
-            _ => return None,
-        })
+        if let Some(entry) = SETTINGS.iter().find(|e| e.key == key) {
+            return Some((entry.get)(self));
+        }
+        let name = key.strip_prefix("learner.")?;
+        match name.split_once('.') {
+            None => {
+                let s = scasm::declaration::shared(name)?;
+                let v = (s.get)(&self.learner);
+                Some(match s.kind {
+                    scasm::declaration::Kind::Count => toml::Value::Integer(v as i64),
+                    scasm::declaration::Kind::Number => toml::Value::Float(v),
+                })
+            }
+            Some((learner, own)) => {
+                let learner = crate::learners::registry::named(learner)?;
+                let s = learner.settings().into_iter().find(|s| s.key == own)?;
+                let v = self.learner_own.get(key).copied().unwrap_or(s.default);
+                Some(match s.kind {
+                    scasm::declaration::Kind::Count => toml::Value::Integer(v as i64),
+                    scasm::declaration::Kind::Number => toml::Value::Float(v),
+                })
+            }
+        }
+    }
+
+    /// The keys a run records: every setting, the scenario's learner's own
+    /// settings, and any other learner's set.
+    pub fn recorded_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = setting_keys().collect();
+        if let Ok(learner) = crate::learners::registry::resolve(&self.learner_name) {
+            for s in learner.settings() {
+                keys.push(format!("learner.{}.{}", learner.name(), s.key));
+            }
+        }
+        for k in self.learner_own.keys() {
+            if !keys.contains(k) {
+                keys.push(k.clone());
+            }
+        }
+        keys
     }
 
     /// Every setting as a scenario file (TOML): what a run records as its
@@ -574,20 +837,18 @@ impl Scenario {
     /// shipped robot's `robot.urdf` is left out (it is the default).
     pub fn to_toml(&self) -> String {
         let mut table = toml::Table::new();
-        for key in setting_keys() {
-            let Some(value) = self.get(key) else { continue };
+        for key in self.recorded_keys() {
+            let Some(value) = self.get(&key) else {
+                continue;
+            };
             if (key == "robot.urdf" && self.urdf_path.is_none())
                 || (key == "robot.file" && self.robot_file.is_none())
             {
                 continue;
             }
-            let (section, name) = key.split_once('.').unwrap_or(("", key));
-            if let toml::Value::Table(t) = table
-                .entry(section)
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-            {
-                t.insert(name.into(), value);
-            }
+            // `learner.batch-ml.gamma` is `[learner.batch-ml] gamma = ...`.
+            let path: Vec<&str> = key.split('.').collect();
+            insert_at(&mut table, &path, value);
         }
         if !self.changes.is_empty() {
             let list = self
@@ -642,6 +903,35 @@ fn section_rank(section: &str) -> u8 {
         "trial" => 1,
         "change" => 3,
         _ => 2,
+    }
+}
+
+/// Puts `value` at `path` (`["learner", "batch-ml", "gamma"]`) in nested tables.
+fn insert_at(table: &mut toml::Table, path: &[&str], value: toml::Value) {
+    match path {
+        [] => {}
+        [last] => {
+            table.insert((*last).into(), value);
+        }
+        [first, rest @ ..] => {
+            let entry = table
+                .entry(*first)
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            if let toml::Value::Table(inner) = entry {
+                insert_at(inner, rest, value);
+            }
+        }
+    }
+}
+
+/// The error for a key no setting has.
+fn unknown(key: &str) -> SettingError {
+    SettingError::UnknownKey {
+        key: key.into(),
+        known: format!(
+            "{}, and learner.<name>.<key> (--learner list)",
+            setting_keys().collect::<Vec<_>>().join(", ")
+        ),
     }
 }
 

@@ -29,6 +29,10 @@ pub enum TrialError {
     /// The learner could not be set up for this scenario.
     #[error("cannot set up the learner: {0}")]
     LearnerSetup(String),
+    /// The learner failed during the trial (a program that crashed, broke
+    /// the protocol or stopped answering): why.
+    #[error("{0}")]
+    LearnerFailed(String),
     /// The scenario's world changes cannot be made.
     #[error(transparent)]
     Setting(#[from] crate::scenario::SettingError),
@@ -388,7 +392,14 @@ pub fn learn(
     comparators: Comparators<'_>,
     reference: &Reference,
     judge_every_s: f64,
-) -> Result<TrialOutcome, EventError> {
+) -> Result<TrialOutcome, TrialError> {
+    // A learner that failed says why; the trial ends there.
+    let failed =
+        |learner: &dyn CalibrationLearner, e: Option<EventError>| match (learner.failure(), e) {
+            (Some(why), _) => Some(TrialError::LearnerFailed(why.into())),
+            (None, Some(e)) => Some(TrialError::Learner(e)),
+            (None, None) => None,
+        };
     let Comparators {
         mut a0_baseline,
         best_degrees,
@@ -432,7 +443,10 @@ pub fn learn(
         })
         .collect();
     for (k, f) in frames.iter().enumerate() {
-        feed(learner, f)?;
+        let fed = feed(learner, f).err();
+        if let Some(e) = failed(learner, fed) {
+            return Err(e);
+        }
         let t_s = f.end_s();
         if (k + 1) % judge_every == 0 {
             over_time.push(reference.judge(t_s, learner));
@@ -466,6 +480,9 @@ pub fn learn(
                     .map(|b| b.x);
             }
         }
+        if let Some(e) = failed(learner, None) {
+            return Err(e);
+        }
         trace.push(row);
     }
     let end_s = frames.last().map_or(0.0, FrameRecord::end_s);
@@ -493,11 +510,11 @@ pub fn run_trial(
 ) -> Result<TrialOutcome, TrialError> {
     let judge_every_s = config.judge_every_s;
     let recording = record(description, sim_config, config)?;
-    Ok(learn(
+    learn(
         &recording,
         learner,
         Comparators::default(),
         reference,
         judge_every_s,
-    )?)
+    )
 }

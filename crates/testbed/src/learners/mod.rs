@@ -1,79 +1,72 @@
-//! The learners a run can name (`--learner NAME`, `learner.name`): each a
-//! [`CalibrationLearner`] from the physics-free `scasm` crate, built from a
-//! scenario's learner settings. Every run kind (train, replay, benchmark,
-//! sweep, view) builds its learners here.
+//! The learners a run can name (`--learner NAME`, `learner.name`): the Rust
+//! learners of the [`registry`] and programs over the learner protocol
+//! ([`exec`]), each built for a trial from a scenario's learner settings.
+//! Every run kind (train, replay, benchmark, sweep, view) builds its
+//! learners here.
 
-use scasm::{
-    BatchMl, BatchMlConfig, CalibrationLearner, Mode, Polynomial, Scasm, ScasmConfig, SensorFit,
-};
+use scasm::declaration::{BuildContext, SHARED};
+use scasm::{Mode, Polynomial};
 
+pub mod exec;
 pub mod registry;
 
 use crate::metrics;
 use crate::reference::Reference;
 use crate::scenario::{LearningMode, Scenario};
 
-pub use registry::{DEFAULT, LEARNERS, names};
+pub use registry::{DEFAULT, LEARNERS, Learner, names, resolve};
+pub use scasm::declaration::BoxedLearner;
 
-/// A learner a host can own and send between threads.
-pub type BoxedLearner = Box<dyn CalibrationLearner + Send>;
-
-/// SCASM's settings for a named SCASM variant.
-fn scasm_config(name: &str, scenario: &Scenario) -> Option<ScasmConfig> {
-    let base = scenario.learner;
-    match name {
-        "scasm-paper" => Some(ScasmConfig {
-            sensor_window: 1,
-            ..base
-        }),
-        "scasm" => Some(base),
-        "scasm-eiv" => Some(ScasmConfig {
-            sensor_fit: SensorFit::Corrected,
-            ..base
-        }),
-        _ => None,
-    }
+/// The shared settings' values in `scenario`, and the command scale, as a
+/// program is told them.
+fn shared_values(scenario: &Scenario) -> Vec<(&'static str, f64)> {
+    let mut out: Vec<(&str, f64)> = SHARED
+        .iter()
+        .map(|s| (s.key, (s.get)(&scenario.learner)))
+        .collect();
+    out.push(("command_scale", scenario.learner.command_scale));
+    out
 }
 
-/// The batch learner's settings for a scenario.
-fn batch_config(scenario: &Scenario) -> BatchMlConfig {
-    BatchMlConfig {
-        online: ScasmConfig {
-            sensor_fit: SensorFit::Corrected,
-            ..scenario.learner
-        },
-        ..BatchMlConfig::default()
-    }
-}
-
-/// The learner `name` for `scenario`. In the one-sided modes (sections IV and
-/// V) the given model is the best polynomial through the measured one, in mm
-/// (location is distance, so the action model is minus the forward speed); only
-/// the SCASM variants learn in those modes.
+/// The learner `spec` names, built for `scenario`. In the one-sided modes
+/// (sections IV and V) the given model is the best polynomial through the
+/// measured one, in mm (location is distance, so the action model is minus
+/// the forward speed); only learners that declare so learn in those modes.
 pub fn build(
-    name: &str,
+    spec: &str,
     scenario: &Scenario,
     reference: &Reference,
 ) -> Result<BoxedLearner, String> {
-    if name == "batch-ml" {
-        if scenario.mode != LearningMode::Simultaneous {
-            return Err(
-                "batch-ml learns both models at once only (trial.mode simultaneous)".into(),
-            );
-        }
-        let params = batch_config(scenario)
-            .validate()
-            .map_err(|e| e.to_string())?;
-        return Ok(Box::new(BatchMl::new(params)));
+    let learner = resolve(spec)?;
+    if scenario.mode != LearningMode::Simultaneous && !learner.one_sided() {
+        return Err(format!(
+            "{} learns both models at once only (trial.mode simultaneous)",
+            learner.name()
+        ));
     }
-    let config = scasm_config(name, scenario).ok_or_else(|| {
-        format!(
-            "unknown learner `{name}`; known: {}",
-            names().collect::<Vec<_>>().join(", ")
-        )
-    })?;
-    let params = config.validate().map_err(|e| e.to_string())?;
-    let mode = match scenario.mode {
+    let own = scenario.own_settings(&learner);
+    match learner {
+        Learner::Rust(declaration) => {
+            let mode = given_model(scenario, reference)?;
+            (declaration.build)(&BuildContext {
+                shared: scenario.learner,
+                own,
+                mode,
+            })
+        }
+        Learner::Program(program) => Ok(Box::new(exec::ExecLearner::start(
+            &program,
+            &own,
+            &shared_values(scenario),
+            scenario.answer_timeout_s,
+        )?)),
+    }
+}
+
+/// What is learned from what, with the given model of a one-sided mode.
+fn given_model(scenario: &Scenario, reference: &Reference) -> Result<Mode, String> {
+    let config = scenario.learner;
+    Ok(match scenario.mode {
         LearningMode::Simultaneous => Mode::Simultaneous,
         LearningMode::SensorFromAction => {
             let a = metrics::best_polynomial(&reference.action, config.action_degree)
@@ -88,17 +81,67 @@ pub fn build(
                     .ok_or("cannot fit the measured sensor model")?,
             )
         }
-    };
-    Ok(Box::new(
-        Scasm::new(params, mode).map_err(|e| e.to_string())?,
-    ))
+    })
 }
 
-/// The effective parameters of learner `name` in `scenario`, for a run's record.
-pub fn parameters(name: &str, scenario: &Scenario) -> serde_json::Value {
-    match (name, scasm_config(name, scenario)) {
-        ("batch-ml", _) => serde_json::to_value(batch_config(scenario)).unwrap_or_default(),
-        (_, Some(config)) => serde_json::to_value(config).unwrap_or_default(),
-        _ => serde_json::Value::Null,
+/// The name `spec`'s learner reports under: a Rust learner's, or a
+/// program's hello's (`spec` itself if it cannot be resolved).
+pub fn display_name(spec: &str) -> String {
+    resolve(spec).map_or_else(|_| spec.to_string(), |l| l.name().to_string())
+}
+
+/// The settings learner `spec` runs with in `scenario`, for a run's record:
+/// every shared and own setting it reads, by its full key, and a program's
+/// command.
+pub fn parameters(spec: &str, scenario: &Scenario) -> serde_json::Value {
+    let Ok(learner) = resolve(spec) else {
+        return serde_json::Value::Null;
+    };
+    let mut out = serde_json::Map::new();
+    out.insert("name".into(), learner.name().into());
+    if let Learner::Program(p) = &learner {
+        out.insert("exec".into(), p.spec.clone().into());
     }
+    for key in learner.shared() {
+        if let Some(s) = scasm::declaration::shared(key) {
+            out.insert(format!("learner.{key}"), (s.get)(&scenario.learner).into());
+        }
+    }
+    for (key, value) in scenario.own_settings(&learner).0 {
+        out.insert(format!("learner.{}.{key}", learner.name()), value.into());
+    }
+    serde_json::Value::Object(out)
+}
+
+/// Every Rust learner and the program `spec` (if one), with its settings
+/// and their defaults at the paper's scale: what `--learner list` prints.
+pub fn describe(extra: Option<&Learner>) -> String {
+    let defaults = scasm::ScasmConfig::default();
+    let mut out = String::new();
+    let all: Vec<Learner> = LEARNERS
+        .iter()
+        .map(Learner::Rust)
+        .chain(extra.cloned())
+        .collect();
+    for learner in &all {
+        out += &format!("{}\n    {}\n", learner.name(), learner.about());
+        let shared: Vec<String> = learner
+            .shared()
+            .iter()
+            .filter_map(|k| scasm::declaration::shared(k))
+            .map(|s| format!("learner.{} = {}", s.key, (s.get)(&defaults)))
+            .collect();
+        out += &format!("    shared: {}\n", shared.join(", "));
+        for s in learner.settings() {
+            out += &format!(
+                "    learner.{}.{} = {}  in {}: {}\n",
+                learner.name(),
+                s.key,
+                s.default,
+                s.range(),
+                s.doc
+            );
+        }
+    }
+    out
 }

@@ -1,0 +1,307 @@
+//! The learner protocol's messages (`docs/learner-protocol.md`), one JSON
+//! object per line, and the checks on what a learner says: no I/O here.
+
+use scasm::declaration::{Kind, Setting};
+use scasm::{Event, MAX_COEFFS, Polynomial};
+use serde::Deserialize;
+use serde_json::{Value, json};
+
+/// The protocol version this host speaks.
+pub const VERSION: u32 = 1;
+
+/// The longest piece of a learner's line quoted in an error.
+const QUOTE_CHARS: usize = 160;
+
+/// A setting as a learner's hello declares it.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SettingLine {
+    key: String,
+    default: f64,
+    #[serde(default)]
+    min: Option<f64>,
+    #[serde(default)]
+    max: Option<f64>,
+    #[serde(default)]
+    integer: bool,
+    #[serde(default)]
+    doc: String,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct HelloLine {
+    protocol: u32,
+    name: String,
+    #[serde(default)]
+    about: String,
+    #[serde(default)]
+    settings: Vec<SettingLine>,
+}
+
+/// What a learner says first: who it is and the settings it takes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hello {
+    /// Its name in reports and in its settings' keys (`learner.<name>.<key>`).
+    pub name: String,
+    /// One line on what it is.
+    pub about: String,
+    /// Its own settings, as declared.
+    pub settings: Vec<Setting>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ModelsLine {
+    action: Option<Vec<f64>>,
+    sensor: Option<Vec<f64>>,
+    x_a: Option<f64>,
+    x_s: Option<f64>,
+}
+
+/// A learner's answer to a query: its current models and locations.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Models {
+    /// The action model (command -> location units per second), if any yet.
+    pub action: Option<Polynomial>,
+    /// The sensor model (pixels -> location units), if any yet.
+    pub sensor: Option<Polynomial>,
+    /// Its dead-reckoned location.
+    pub x_a: Option<f64>,
+    /// Its location from the latest reading.
+    pub x_s: Option<f64>,
+}
+
+/// What a line from a learner is, once read.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Said {
+    /// Its hello.
+    Hello(Hello),
+    /// An answer to a query.
+    Models(Models),
+    /// It refuses to go on, and says why.
+    Error(String),
+}
+
+/// `text` cut to a quotable length.
+fn quote(text: &str) -> String {
+    let cut: String = text.chars().take(QUOTE_CHARS).collect();
+    if cut.len() < text.len() {
+        format!("{cut}...")
+    } else {
+        cut
+    }
+}
+
+/// Reads one line a learner wrote, or says how it is not the protocol.
+pub fn parse(line: &str) -> Result<Said, String> {
+    let not_protocol = |why: String| {
+        format!(
+            "wrote a line that is not the protocol ({why}): `{}` (a learner writes only \
+             protocol lines to stdout; logs go to stderr)",
+            quote(line)
+        )
+    };
+    let value: Value = serde_json::from_str(line).map_err(|e| {
+        if ["NaN", "Infinity"].iter().any(|t| line.contains(t)) {
+            format!(
+                "answered a number that is not finite (NaN and Infinity are not JSON): `{}`",
+                quote(line)
+            )
+        } else {
+            not_protocol(e.to_string())
+        }
+    })?;
+    let kind = value
+        .get("type")
+        .and_then(Value::as_str)
+        .ok_or_else(|| not_protocol("no string \"type\"".into()))?
+        .to_string();
+    let mut body = value;
+    if let Some(map) = body.as_object_mut() {
+        map.remove("type");
+    }
+    let fields = |e: serde_json::Error| not_protocol(format!("a `{kind}` message: {e}"));
+    match kind.as_str() {
+        "hello" => hello(serde_json::from_value(body).map_err(fields)?).map(Said::Hello),
+        "models" => models(serde_json::from_value(body).map_err(fields)?).map(Said::Models),
+        "error" => {
+            #[derive(Deserialize)]
+            #[serde(deny_unknown_fields)]
+            struct ErrorLine {
+                message: String,
+            }
+            let e: ErrorLine = serde_json::from_value(body).map_err(fields)?;
+            Ok(Said::Error(e.message))
+        }
+        other => Err(not_protocol(format!(
+            "unknown type `{other}`; a learner says hello, models or error"
+        ))),
+    }
+}
+
+/// A hello, checked: the version, a name that can be part of a key, and
+/// settings whose defaults are in their ranges.
+fn hello(h: HelloLine) -> Result<Hello, String> {
+    if h.protocol != VERSION {
+        return Err(format!(
+            "speaks protocol version {}; this host speaks version {VERSION}",
+            h.protocol
+        ));
+    }
+    let word = |s: &str| {
+        !s.is_empty()
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+    };
+    if !word(&h.name) {
+        return Err(format!(
+            "calls itself `{}`: a learner's name is letters, digits, `-` and `_` (it is part of \
+             its settings' keys, learner.<name>.<key>)",
+            quote(&h.name)
+        ));
+    }
+    let mut settings: Vec<Setting> = Vec::new();
+    for s in h.settings {
+        if !word(&s.key) || s.key.contains('-') {
+            return Err(format!(
+                "declares a setting `{}`: a key is letters, digits and `_`",
+                quote(&s.key)
+            ));
+        }
+        if settings.iter().any(|d| d.key == s.key) {
+            return Err(format!("declares the setting `{}` twice", s.key));
+        }
+        let kind = if s.integer { Kind::Count } else { Kind::Number };
+        let (min, max) = (
+            s.min.unwrap_or(f64::NEG_INFINITY),
+            s.max.unwrap_or(f64::INFINITY),
+        );
+        let setting = Setting::new(&s.key, kind, s.default, (min, false, max), &s.doc);
+        setting.check(s.default).map_err(|e| {
+            format!(
+                "declares `{}` with a default that is not allowed: {e}",
+                s.key
+            )
+        })?;
+        settings.push(setting);
+    }
+    Ok(Hello {
+        name: h.name,
+        about: h.about,
+        settings,
+    })
+}
+
+/// An answer, checked: models of 1 to [`MAX_COEFFS`] finite coefficients,
+/// finite locations.
+fn models(m: ModelsLine) -> Result<Models, String> {
+    let polynomial = |which: &str, c: Option<Vec<f64>>| -> Result<Option<Polynomial>, String> {
+        let Some(c) = c else { return Ok(None) };
+        Polynomial::new(&c)
+            .filter(Polynomial::is_finite)
+            .map(Some)
+            .ok_or_else(|| {
+                format!(
+                    "answered an impossible {which} model {c:?}: a model is 1 to {MAX_COEFFS} \
+                     finite coefficients, lowest power first, or null"
+                )
+            })
+    };
+    let location = |which: &str, x: Option<f64>| match x {
+        Some(v) if !v.is_finite() => Err(format!("answered {which} = {v}")),
+        other => Ok(other),
+    };
+    Ok(Models {
+        action: polynomial("action", m.action)?,
+        sensor: polynomial("sensor", m.sensor)?,
+        x_a: location("x_a", m.x_a)?,
+        x_s: location("x_s", m.x_s)?,
+    })
+}
+
+/// The host's answer to a hello: the learner's own settings in force and
+/// the shared ones (`learner.gamma`, the degrees, and the command scale).
+pub fn settings_line(own: &[(String, f64)], shared: &[(&str, f64)]) -> String {
+    let own: serde_json::Map<String, Value> =
+        own.iter().map(|(k, v)| (k.clone(), json!(v))).collect();
+    let shared: serde_json::Map<String, Value> = shared
+        .iter()
+        .map(|(k, v)| ((*k).to_string(), json!(v)))
+        .collect();
+    json!({"type": "settings", "protocol": VERSION, "settings": own, "shared": shared}).to_string()
+}
+
+/// An event, as a line.
+pub fn event_line(event: Event) -> String {
+    match event {
+        Event::Command { t_s, dt_s, command } => {
+            json!({"type": "command", "t_s": t_s, "dt_s": dt_s, "command": command})
+        }
+        Event::Reading { t_s, obs_px } => json!({"type": "reading", "t_s": t_s, "obs_px": obs_px}),
+    }
+    .to_string()
+}
+
+/// The query for the learner's models.
+pub const QUERY: &str = r#"{"type":"query"}"#;
+
+/// The end of the trial.
+pub const END: &str = r#"{"type":"end"}"#;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_hello_is_read_and_checked() {
+        let line = r#"{"type":"hello","protocol":1,"name":"mine","settings":[
+            {"key":"k","default":2,"min":1,"max":3,"integer":true,"doc":"a count"}]}"#
+            .replace('\n', "");
+        let Ok(Said::Hello(h)) = parse(&line) else {
+            panic!("{:?}", parse(&line))
+        };
+        assert_eq!(
+            (h.name.as_str(), h.settings[0].range()),
+            ("mine", "1..=3".into())
+        );
+        let other = line.replace("\"protocol\":1", "\"protocol\":2");
+        assert!(parse(&other).is_err_and(|e| e.contains("version 2")));
+        let bad_default = line.replace("\"default\":2", "\"default\":7");
+        assert!(parse(&bad_default).is_err_and(|e| e.contains("default")));
+        let dotted = line.replace("\"mine\"", "\"my.learner\"");
+        assert!(parse(&dotted).is_err_and(|e| e.contains("calls itself")));
+    }
+
+    #[test]
+    fn answers_that_are_not_models_are_refused_with_the_reason() {
+        let ok = r#"{"type":"models","action":[0,1],"sensor":null,"x_a":1.5,"x_s":null}"#;
+        assert!(
+            matches!(parse(ok), Ok(Said::Models(m)) if m.action.is_some() && m.sensor.is_none())
+        );
+        let nan = ok.replace("1.5", "NaN");
+        assert!(parse(&nan).is_err_and(|e| e.contains("not finite")));
+        let empty = ok.replace("[0,1]", "[]");
+        assert!(parse(&empty).is_err_and(|e| e.contains("impossible action")));
+        let long = ok.replace("[0,1]", "[0,1,2,3,4,5,6,7,8,9]");
+        assert!(parse(&long).is_err_and(|e| e.contains("impossible")));
+        let typo = ok.replace("\"action\"", "\"acton\"");
+        assert!(parse(&typo).is_err_and(|e| e.contains("not the protocol")));
+        assert!(parse("hello world").is_err_and(|e| e.contains("stderr")));
+        assert_eq!(
+            parse(r#"{"type":"error","message":"no"}"#),
+            Ok(Said::Error("no".into()))
+        );
+    }
+
+    #[test]
+    fn events_are_written_exactly() {
+        let e = Event::Reading {
+            t_s: 0.1 + 0.2,
+            obs_px: 1.0 / 3.0,
+        };
+        let v: Value = serde_json::from_str(&event_line(e)).unwrap_or_default();
+        assert_eq!(v["t_s"].as_f64(), Some(0.1 + 0.2));
+        assert_eq!(v["obs_px"].as_f64(), Some(1.0 / 3.0));
+    }
+}
