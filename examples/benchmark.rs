@@ -70,20 +70,18 @@ fn main() -> Result<()> {
         scasm_testbed::list_learners_if_asked(Some("list"));
         return Ok(());
     }
-    let learners: Vec<String> = if args.learners.is_empty() {
+    // Each learner as named (a program is started here once, to read its
+    // hello), and the name it reports under.
+    let specs: Vec<String> = if args.learners.is_empty() {
         learners::names().map(String::from).collect()
     } else {
         args.learners.clone()
     };
-    if let Some(unknown) = learners
+    let learners: Vec<String> = specs
         .iter()
-        .find(|l| !learners::names().any(|n| n == *l))
-    {
-        bail!(
-            "unknown learner `{unknown}`; known: {}",
-            learners::names().collect::<Vec<_>>().join(", ")
-        );
-    }
+        .map(|spec| learners::resolve(spec).map(|l| l.name().to_string()))
+        .collect::<Result<_, _>>()
+        .map_err(|e| anyhow::anyhow!("--learners: {e}"))?;
     let (first, end) =
         scenario::parse_seeds(&args.seeds).map_err(|e| anyhow::anyhow!("--seeds: {e}"))?;
     let seeds: Vec<u64> = (first..end).collect();
@@ -113,7 +111,7 @@ fn main() -> Result<()> {
         }
     }
     let mut entries = if args.merge.is_empty() {
-        run(&args, &suite, &references, &learners, &seeds)?
+        run(&args, &suite, &references, &specs, &seeds)?
     } else {
         let parts = args
             .merge
@@ -323,7 +321,7 @@ fn run(
             summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
         if let Ok(mut v) = entries.lock() {
             v.push(Entry {
-                learner: job.learner.to_string(),
+                learner: learners::display_name(job.learner),
                 scenario: scenario_of(job),
                 seed,
                 status,

@@ -50,8 +50,11 @@ fn scenario_of(dataset: &Dataset, args: &Args) -> Result<Scenario> {
         .context("the dataset's scenario")?;
     for s in &args.set {
         ensure!(
-            s.trim_start().starts_with("learner."),
-            "`{s}`: a replay can change only learner settings; the world is recorded"
+            ["learner.", "exec."]
+                .iter()
+                .any(|p| s.trim_start().starts_with(p)),
+            "`{s}`: a replay can change only learner settings (learner.*, exec.*); the world is \
+             recorded"
         );
         scenario.set(s)?;
     }

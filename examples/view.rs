@@ -79,7 +79,7 @@ fn main() -> Result<()> {
         // The world steps one frame, then the learner is fed it: the same
         // feeding as every recorded run.
         let frame = runner.step_frame()?;
-        trial::feed(learner.as_mut(), &frame)?;
+        trial::feed_checked(learner.as_mut(), &frame)?;
         t_s = frame.end_s();
         log.world_frame(runner.sim(), &frame)?;
         log.learner_row(&TraceRow::of(&frame, learner.as_ref()))?;

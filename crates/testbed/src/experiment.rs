@@ -129,7 +129,7 @@ pub fn learn_every(
         scasm::Mode::SensorFromAction(scasm::Polynomial::identity()),
     )
     .map_err(|e| TrialError::LearnerSetup(e.to_string()))?;
-    Ok(trial::learn(
+    trial::learn(
         recording,
         learner.as_mut(),
         trial::Comparators {
@@ -141,7 +141,7 @@ pub fn learn_every(
         },
         &reference,
         judge_every_s,
-    )?)
+    )
 }
 
 /// A recorded trial and the scenario's learner's run over it.

@@ -527,7 +527,12 @@ impl Scenario {
             }
             flat.sort_by_key(|(full, _)| full != "learner.name");
             for (full, value) in flat {
-                let kind = SETTINGS.iter().find(|e| e.key == full).map(|e| e.kind);
+                // Every learner setting but its name is a number.
+                let kind = SETTINGS
+                    .iter()
+                    .find(|e| e.key == full)
+                    .map(|e| e.kind)
+                    .or_else(|| full.starts_with("learner.").then_some(Kind::Number));
                 let value = match (value, kind) {
                     (toml::Value::String(text), Some(Kind::Text) | None) => text.clone(),
                     (toml::Value::Integer(i), Some(Kind::Number | Kind::Count) | None) => {

@@ -119,6 +119,29 @@ pub fn feed(learner: &mut dyn CalibrationLearner, frame: &FrameRecord) -> Result
     frame.events().try_for_each(|e| learner.handle(e))
 }
 
+/// [`feed`], and then whether the learner can go on: a refused event, or a
+/// learner that has failed (a program that died, say), ends the trial with
+/// the reason. Queries may also find a learner failed: check
+/// [`CalibrationLearner::failure`] after them (see [`learner_failed`]).
+pub fn feed_checked(
+    learner: &mut dyn CalibrationLearner,
+    frame: &FrameRecord,
+) -> Result<(), TrialError> {
+    let fed = feed(learner, frame).err();
+    match (learner_failed(learner), fed) {
+        (Some(e), _) => Err(e),
+        (None, Some(e)) => Err(TrialError::Learner(e)),
+        (None, None) => Ok(()),
+    }
+}
+
+/// The learner's failure, as a trial's error, if it has failed.
+pub fn learner_failed(learner: &dyn CalibrationLearner) -> Option<TrialError> {
+    learner
+        .failure()
+        .map(|why| TrialError::LearnerFailed(why.into()))
+}
+
 /// A trial's world as recorded: every frame, in order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Recording {
@@ -393,13 +416,6 @@ pub fn learn(
     reference: &Reference,
     judge_every_s: f64,
 ) -> Result<TrialOutcome, TrialError> {
-    // A learner that failed says why; the trial ends there.
-    let failed =
-        |learner: &dyn CalibrationLearner, e: Option<EventError>| match (learner.failure(), e) {
-            (Some(why), _) => Some(TrialError::LearnerFailed(why.into())),
-            (None, Some(e)) => Some(TrialError::Learner(e)),
-            (None, None) => None,
-        };
     let Comparators {
         mut a0_baseline,
         best_degrees,
@@ -443,10 +459,7 @@ pub fn learn(
         })
         .collect();
     for (k, f) in frames.iter().enumerate() {
-        let fed = feed(learner, f).err();
-        if let Some(e) = failed(learner, fed) {
-            return Err(e);
-        }
+        feed_checked(learner, f)?;
         let t_s = f.end_s();
         if (k + 1) % judge_every == 0 {
             over_time.push(reference.judge(t_s, learner));
@@ -480,7 +493,7 @@ pub fn learn(
                     .map(|b| b.x);
             }
         }
-        if let Some(e) = failed(learner, None) {
+        if let Some(e) = learner_failed(learner) {
             return Err(e);
         }
         trace.push(row);

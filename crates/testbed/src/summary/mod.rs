@@ -119,7 +119,7 @@ impl RunSummary {
             .collect();
         let json = summary_json(
             &rows,
-            &scenario.learner_name,
+            &crate::learners::display_name(&scenario.learner_name),
             crate::learners::parameters(&scenario.learner_name, scenario),
             &models.describe(&scenario.stopwatch()),
         );

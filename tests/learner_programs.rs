@@ -1,0 +1,247 @@
+//! Learners from outside the build: a program over the learner protocol
+//! learns from the same recording as a Rust learner; the Python port of the
+//! paper's SCASM gives the Rust `scasm-paper`'s models; every way a program
+//! can misbehave fails its trial with the reason and its stderr, and only
+//! its trial; and learners' own settings are checked against what each
+//! declares.
+
+use std::sync::{Mutex, OnceLock};
+
+use scasm::Polynomial;
+use testbed::experiment::{self, Job};
+use testbed::learners;
+use testbed::reference::MeasuredModels;
+use testbed::scenario::Scenario;
+use testbed::trial::{Recording, TrialError, TrialOutcome};
+
+const PY_SCASM: &str = "exec:python3 examples/learners/scasm_paper.py";
+const PY_INVERSE: &str = "exec:python3 examples/learners/inverse_fit.py";
+
+fn bad(mode: &str) -> String {
+    format!("exec:python3 tests/fixtures/learners/bad.py {mode}")
+}
+
+fn setup() -> &'static (Scenario, MeasuredModels, Recording) {
+    static SETUP: OnceLock<(Scenario, MeasuredModels, Recording)> = OnceLock::new();
+    SETUP.get_or_init(|| {
+        let scenario = Scenario::paper().expect("scenario");
+        let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
+        let models =
+            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
+        let recording = experiment::record(&scenario, &models, 3).expect("recording");
+        (scenario, models, recording)
+    })
+}
+
+/// Learner `spec` over the recording, with `settings` on the scenario.
+fn learn(spec: &str, settings: &[&str]) -> Result<TrialOutcome, TrialError> {
+    let (scenario, models, recording) = setup();
+    let mut s = scenario.clone();
+    for x in settings {
+        s.set(x).expect(x);
+    }
+    experiment::learn(&s, models, recording, spec)
+}
+
+fn largest_relative_difference(a: Option<Polynomial>, b: Option<Polynomial>) -> f64 {
+    let (Some(a), Some(b)) = (a, b) else {
+        return f64::INFINITY;
+    };
+    assert_eq!(a.coeffs().len(), b.coeffs().len());
+    a.coeffs()
+        .iter()
+        .zip(b.coeffs())
+        .map(|(x, y)| (x - y).abs() / x.abs().max(y.abs()).max(f64::MIN_POSITIVE))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_python_scasm_gives_the_rust_scasm_papers_models() {
+    let rust = learn("scasm-paper", &[]).expect("rust");
+    let python = learn(PY_SCASM, &[]).expect("python");
+    for (r, p) in [
+        (rust.action_model, python.action_model),
+        (rust.sensor_model, python.sensor_model),
+    ] {
+        let d = largest_relative_difference(r, p);
+        assert!(d <= 1e-6, "models differ by {d:e} relative: {r:?} vs {p:?}");
+    }
+    // Every frame's locations, and the models judged every 5 s, too.
+    assert_eq!(rust.trace.len(), python.trace.len());
+    for (r, p) in rust.trace.iter().zip(&python.trace) {
+        let (a, b) = (r.x_a.unwrap_or(f64::NAN), p.x_a.unwrap_or(f64::NAN));
+        assert!(
+            (a - b).abs() <= 1e-6 * a.abs().max(1.0),
+            "x_a at {} s: {a} vs {b}",
+            r.t_s
+        );
+        assert_eq!(r.x_s.is_some(), p.x_s.is_some(), "x_s at {} s", r.t_s);
+    }
+    assert_eq!(rust.over_time.len(), python.over_time.len());
+    // A deterministic program gives the same bits run after run.
+    let again = learn(PY_SCASM, &[]).expect("again");
+    assert_eq!(again, python);
+}
+
+#[test]
+fn a_programs_own_settings_reach_it_and_are_checked() {
+    let default = learn(PY_INVERSE, &[]).expect("default");
+    assert!(default.sensor_model.is_some() && default.action_model.is_some());
+    // The same fit in other internal units: the same model, to rounding.
+    let scaled = learn(PY_INVERSE, &["learner.inverse-fit-py.scale_px=50"]).expect("scaled");
+    let d = largest_relative_difference(default.sensor_model, scaled.sensor_model);
+    assert!(
+        d < 1e-6 && d > 0.0,
+        "{d:e}: the setting did not reach the program, or broke it"
+    );
+    let (scenario, ..) = setup();
+    let mut s = scenario.clone();
+    s.set(&format!("learner.name={PY_INVERSE}")).expect("named");
+    s.set("learner.inverse-fit-py.scale_px=50").expect("set");
+    let p = learners::parameters(&s.learner_name, &s);
+    assert_eq!(p["learner.inverse-fit-py.scale_px"], 50.0);
+    assert_eq!(p["name"], "inverse-fit-py");
+    assert_eq!(p["exec"], PY_INVERSE);
+    assert!(s.to_toml().contains("scale_px = 50"), "{}", s.to_toml());
+    let below = s
+        .set("learner.inverse-fit-py.scale_px=0.5")
+        .expect_err("below its min");
+    assert!(below.to_string().contains("[1, inf)"), "{below}");
+    let other = s
+        .set("learner.inverse-fit-py.gain=1")
+        .expect_err("not its key");
+    assert!(
+        other.to_string().contains("its settings: scale_px"),
+        "{other}"
+    );
+}
+
+#[test]
+fn each_way_a_program_misbehaves_fails_its_trial_saying_how() {
+    for (mode, settings, says) in [
+        ("crash", &[][..], "exited with status 3"),
+        ("garbage", &[], "not the protocol"),
+        ("nan", &[], "not finite"),
+        ("impossible", &[], "impossible action model"),
+        (
+            "silent",
+            &["exec.answer_timeout_s=0.5"],
+            "did not answer within 0.5 s",
+        ),
+        ("refuse", &[], "gave up: I refuse"),
+    ] {
+        let spec = bad(mode);
+        match learn(&spec, settings) {
+            Err(TrialError::LearnerFailed(why)) => {
+                assert!(why.contains(says), "{mode}: {why}");
+                assert!(
+                    why.contains(&format!("learner `bad-{mode}`")),
+                    "{mode}: {why}"
+                );
+                if mode == "crash" {
+                    assert!(why.contains("bad learner: crashing on purpose"), "{why}");
+                }
+            }
+            other => panic!("{mode}: {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn a_program_that_cannot_start_is_refused_before_any_trial() {
+    let (scenario, ..) = setup();
+    let mut s = scenario.clone();
+    let e = s
+        .set("learner.name=exec:/no/such/learner")
+        .expect_err("no program");
+    assert!(e.to_string().contains("cannot start"), "{e}");
+    let e = s
+        .set(&format!("learner.name={}", bad("no_hello")))
+        .expect_err("no hello");
+    assert!(
+        e.to_string().contains("before saying hello")
+            && e.to_string().contains("giving up before hello"),
+        "{e}"
+    );
+    let e = s
+        .set(&format!("learner.name={}", bad("version")))
+        .expect_err("version");
+    assert!(e.to_string().contains("protocol version 99"), "{e}");
+    assert_eq!(
+        s.learner_name,
+        learners::DEFAULT,
+        "a refused learner changes nothing"
+    );
+}
+
+#[test]
+fn a_learner_that_dies_mid_trial_fails_only_its_trial() {
+    let (scenario, models, _) = setup();
+    let crash = bad("crash");
+    let jobs: Vec<Job<'_>> = ["scasm", crash.as_str(), PY_SCASM]
+        .iter()
+        .flat_map(|&learner| {
+            [3, 4].map(|seed| Job {
+                scenario,
+                models,
+                seed,
+                learner,
+            })
+        })
+        .collect();
+    let results = Mutex::new(vec![None; jobs.len()]);
+    experiment::run_jobs(&jobs, &|i, r| {
+        results.lock().expect("lock")[i] = Some(r.as_ref().map(|_| ()).map_err(|e| e.to_string()));
+    });
+    for (job, r) in jobs.iter().zip(results.into_inner().expect("results")) {
+        let r = r.expect("every job reports");
+        assert_eq!(
+            r.is_ok(),
+            job.learner != crash,
+            "{} seed {}: {r:?}",
+            job.learner,
+            job.seed
+        );
+    }
+}
+
+#[test]
+fn a_rust_learners_own_settings_change_it_and_others_keys_are_refused() {
+    let default = learn("batch-ml", &[]).expect("default");
+    let rare = learn("batch-ml", &["learner.batch-ml.solve_every_s=40"]).expect("rare");
+    assert_ne!(default.sensor_model, rare.sensor_model);
+    let (scenario, ..) = setup();
+    let mut s = scenario.clone();
+    let e = s
+        .set("learner.batch-ml.beta=0.1")
+        .expect_err("beta is shared");
+    let text = e.to_string();
+    assert!(
+        text.contains("learner `batch-ml` has no setting `beta`"),
+        "{text}"
+    );
+    assert!(
+        text.contains("solve_every_s") && text.contains("process_noise"),
+        "{text}"
+    );
+    let e = s
+        .set("learner.scasm.gamma=0.9")
+        .expect_err("scasm has none of its own");
+    assert!(e.to_string().contains("none of its own"), "{e}");
+    let e = s
+        .set("learner.nobody.gamma=0.9")
+        .expect_err("no such learner");
+    assert!(
+        e.to_string().contains("no learner is called `nobody`"),
+        "{e}"
+    );
+    let e = s
+        .set("learner.batch-ml.iterations=2.5")
+        .expect_err("a count");
+    assert!(e.to_string().contains("whole number"), "{e}");
+    s.set("learner.name=batch-ml").expect("batch-ml");
+    s.set("learner.batch-ml.solve_every_s=40").expect("set");
+    let p = learners::parameters(&s.learner_name, &s);
+    assert_eq!(p["learner.batch-ml.solve_every_s"], 40.0);
+    assert_eq!(p["learner.forward_degree"], 5.0);
+}
