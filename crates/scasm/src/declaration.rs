@@ -3,7 +3,8 @@
 //! with a type, default, range and a line of doc) and how it is built from
 //! them. A host lists, checks, records and sweeps settings from these
 //! declarations alone; a new learner is one [`Declaration`] beside its
-//! algorithm and one line in [`crate::LEARNERS`].
+//! algorithm and one line in the host's registry (the testbed's
+//! `learners/registry.rs`).
 
 use std::boxed::Box;
 use std::format;
