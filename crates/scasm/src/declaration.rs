@@ -13,7 +13,7 @@ use std::vec::Vec;
 
 use crate::config::ScasmConfig;
 use crate::learner::CalibrationLearner;
-use crate::scasm::Mode;
+use crate::mode::Mode;
 
 /// A setting's type.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

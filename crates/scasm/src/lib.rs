@@ -37,6 +37,7 @@ pub mod declaration;
 mod eiv_fit;
 mod error;
 mod learner;
+mod mode;
 mod poly_fit;
 mod polynomial;
 mod scasm;
@@ -51,10 +52,11 @@ pub use batch::{BATCH_ML, BatchMl, BatchMlConfig, BatchMlParams};
 pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
+pub use mode::Mode;
 pub use polynomial::{MAX_COEFFS, Polynomial};
+pub use scasm::Scasm;
 #[cfg(feature = "std")]
 pub use scasm::declarations::{SCASM, SCASM_EIV, SCASM_PAPER};
-pub use scasm::{Mode, Scasm};
 
 #[cfg(test)]
 mod proptests;

@@ -6,27 +6,13 @@ use crate::config::{ScasmParams, SensorFit};
 use crate::eiv_fit::{EivFit, NoiseEstimate};
 use crate::error::{ConfigError, EventError};
 use crate::learner::{CalibrationLearner, Event};
+use crate::mode::Mode;
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
 
 /// How far (s) an event's time may stray from the learner's clock, for hosts
 /// that add up their time steps in another order.
 const TIME_TOLERANCE_S: f64 = 1e-6;
-
-/// What is learned from what.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum Mode {
-    /// Both models at once, each from the other (section VI, Fig. 4).
-    Simultaneous,
-    /// S from one constant action: regress readings on time (Fig. 2a). The
-    /// learned S is in "seconds of this walk".
-    SensorFromConstantAction,
-    /// S from a given action model, by dead reckoning (section IV).
-    SensorFromAction(Polynomial),
-    /// A from a given sensor model (section V, Eq. 5).
-    ActionFromSensor(Polynomial),
-}
 
 /// Simultaneous Calibration of Action and Sensor Models.
 ///
@@ -361,9 +347,10 @@ pub mod declarations {
     use std::string::ToString;
     use std::vec::Vec;
 
-    use super::{Mode, Scasm};
+    use super::Scasm;
     use crate::config::{ScasmConfig, SensorFit};
     use crate::declaration::{BoxedLearner, BuildContext, Declaration};
+    use crate::mode::Mode;
 
     /// The shared settings every variant reads.
     const COMMON: [&str; 5] = ["gamma", "beta", "t_start", "sensor_degree", "action_degree"];
