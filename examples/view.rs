@@ -12,9 +12,9 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Result, anyhow};
 use clap::Parser;
+use report::rrd::{MODELS_EVERY_S, TrialLog};
 use testbed::experiment;
 use testbed::learners;
-use testbed::rrd::{MODELS_EVERY_S, TrialLog};
 use testbed::trial::{self, TraceRow, TrialConfig, TrialRunner};
 
 /// Show a training trial on the simulated quadruped, live, in Rerun.

@@ -155,7 +155,7 @@ impl RerunArgs {
 
 #[cfg(feature = "rerun")]
 fn write_rerun(path: &Path, trial: &RunTrial<'_>) -> anyhow::Result<()> {
-    use testbed::rrd::{TrialLog, log_trial};
+    use report::rrd::{TrialLog, log_trial};
     let seed = trial.recording.seed;
     println!(
         "Writing trial {seed} to the Rerun recording {}...",

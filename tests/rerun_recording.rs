@@ -3,8 +3,8 @@
 //! recording, bit for bit.
 #![cfg(feature = "rerun")]
 
+use report::rrd::{RrdError, TrialLog, log_trial};
 use testbed::experiment;
-use testbed::rrd::{RrdError, TrialLog, log_trial};
 use testbed::scenario::Scenario;
 
 #[test]

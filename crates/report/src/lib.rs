@@ -10,6 +10,8 @@ pub mod heatmap;
 pub mod page;
 pub mod paper;
 pub mod plot;
+#[cfg(feature = "rerun")]
+pub mod rrd;
 pub mod spread;
 pub mod table;
 

@@ -304,69 +304,102 @@ fn localisation(trial: &TrialOutcome) -> Option<Figure> {
 
 fn fig7a(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
     let a = trial.action_model?;
-    let reference = measured.reference().action;
-    let k = metrics::action_error(&a, &reference).scale;
-    let (lo, hi) = span(measured.action.iter().map(|m| m.command));
+    let std: Vec<f64> = measured.action.iter().map(|m| m.std_mm_s).collect();
     Some(Figure {
         stem: "fig7a",
-        chart: Chart {
-            title: format!("Fig. 7a: action model (seed {}), best scale", trial.seed),
-            x_label: "action command".into(),
-            y_label: "velocity towards the beacon (mm/s)".into(),
-            series: vec![
-                Series::new(
-                    "measured (stopwatch, +- 1 std)",
-                    Mark::ErrorBars(measured.action.iter().map(|m| m.std_mm_s).collect()),
-                    colours::BLUE,
-                    reference,
-                ),
-                Series::new(
-                    "learned",
-                    Mark::Line,
-                    colours::RED,
-                    curve(lo, hi, 121, |c| k * a.eval(c)),
-                ),
-            ],
-            legend: SeriesLabelPosition::UpperLeft,
-        },
+        chart: action_chart(
+            &format!("Fig. 7a: action model (seed {}), best scale", trial.seed),
+            &measured.reference().action,
+            Some(std),
+            Some(a),
+        ),
     })
 }
 
 fn fig7b(trial: &TrialOutcome, measured: &MeasuredModels) -> Option<Figure> {
     let s = trial.sensor_model?;
-    let reference = measured.reference().sensor;
-    let fit = metrics::sensor_error(&s, &reference);
-    let (lo, hi) = span(measured.sensor.iter().map(|m| m.obs_px));
     Some(Figure {
         stem: "fig7b",
-        chart: Chart {
-            title: format!(
+        chart: sensor_chart(
+            &format!(
                 "Fig. 7b: sensor model (seed {}), best affine map",
                 trial.seed
             ),
-            x_label: "beacon height (px)".into(),
-            y_label: "distance to the beacon (mm)".into(),
-            series: vec![
-                Series::new(
-                    "measured (tape measure)",
-                    Mark::Dot,
-                    colours::BLUE,
-                    measured
-                        .sensor
-                        .iter()
-                        .map(|m| (m.obs_px, m.distance_mm))
-                        .collect(),
-                ),
-                Series::new(
-                    "learned",
-                    Mark::Line,
-                    colours::RED,
-                    curve(lo, hi, 100, |o| fit.offset + fit.scale * s.eval(o)),
-                ),
-            ],
-            legend: SeriesLabelPosition::UpperRight,
-        },
+            &measured.reference().sensor,
+            Some(s),
+        ),
     })
+}
+
+/// The action model against the measured one (`(command, velocity)` points,
+/// with their standard deviations if known): the learned model, if any,
+/// after the action metric's best scale.
+pub fn action_chart(
+    title: &str,
+    measured: &[(f64, f64)],
+    std: Option<Vec<f64>>,
+    learned: Option<Polynomial>,
+) -> Chart {
+    let (lo, hi) = span(measured.iter().map(|m| m.0));
+    let mut series = vec![match std {
+        Some(std) => Series::new(
+            "measured (stopwatch, +- 1 std)",
+            Mark::ErrorBars(std),
+            colours::BLUE,
+            measured.to_vec(),
+        ),
+        None => Series::new(
+            "measured (stopwatch)",
+            Mark::Dot,
+            colours::BLUE,
+            measured.to_vec(),
+        ),
+    }];
+    if let Some(a) = learned {
+        let k = metrics::action_error(&a, measured).scale;
+        series.push(Series::new(
+            "learned",
+            Mark::Line,
+            colours::RED,
+            curve(lo, hi, 121, |c| k * a.eval(c)),
+        ));
+    }
+    Chart {
+        title: title.into(),
+        x_label: "action command".into(),
+        y_label: "velocity towards the beacon (mm/s)".into(),
+        series,
+        legend: SeriesLabelPosition::UpperLeft,
+    }
+}
+
+/// The sensor model against the measured one (`(distance, reading)`
+/// points): the learned model, if any, after the sensor metric's best affine
+/// map.
+pub fn sensor_chart(title: &str, measured: &[(f64, f64)], learned: Option<Polynomial>) -> Chart {
+    let (lo, hi) = span(measured.iter().map(|m| m.1));
+    let mut series = vec![Series::new(
+        "measured (tape measure)",
+        Mark::Dot,
+        colours::BLUE,
+        measured.iter().map(|&(d, o)| (o, d)).collect(),
+    )];
+    if let Some(s) = learned {
+        let fit = metrics::sensor_error(&s, measured);
+        series.push(Series::new(
+            "learned",
+            Mark::Line,
+            colours::RED,
+            curve(lo, hi, 100, |o| fit.offset + fit.scale * s.eval(o)),
+        ));
+    }
+    Chart {
+        title: title.into(),
+        x_label: "beacon height (px)".into(),
+        y_label: "distance to the beacon (mm)".into(),
+        series,
+        legend: SeriesLabelPosition::UpperRight,
+    }
 }
 
 fn span(values: impl Iterator<Item = f64>) -> (f64, f64) {

@@ -247,21 +247,28 @@ pub trait Drawing {
     /// Writes `<stem>.svg` and `<stem>.png`, each whole or not at all.
     fn save(&self, stem: &Path) -> Result<(), ReportError> {
         register_font()?;
-        let size = Self::SIZE;
         let mut svg = String::new();
         {
-            let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+            let root = SVGBackend::with_string(&mut svg, Self::SIZE).into_drawing_area();
             self.draw(&root).map_err(draw_error)?;
             root.present().map_err(draw_error)?;
         }
         write_atomic(&stem.with_extension("svg"), svg.as_bytes())?;
+        write_atomic(&stem.with_extension("png"), &self.png()?)
+    }
+
+    /// It as PNG bytes (what [`Drawing::save`] writes, and what a Rerun
+    /// recording shows).
+    fn png(&self) -> Result<Vec<u8>, ReportError> {
+        register_font()?;
+        let size = Self::SIZE;
         let mut rgb = vec![0u8; (size.0 * size.1 * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
             self.draw(&root).map_err(draw_error)?;
             root.present().map_err(draw_error)?;
         }
-        write_atomic(&stem.with_extension("png"), &encode_png(&rgb, size)?)
+        encode_png(&rgb, size)
     }
 }
 
@@ -290,8 +297,8 @@ pub(crate) fn draw_error<E: std::error::Error + Send + Sync>(
     ReportError::Draw(e.to_string())
 }
 
-/// An RGB buffer as PNG bytes.
-pub(crate) fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, ReportError> {
+/// An RGB buffer as PNG bytes: the workspace's one PNG encoder.
+pub fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, ReportError> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, w, h);

@@ -19,8 +19,6 @@ pub mod metrics;
 pub mod output;
 pub mod provenance;
 pub mod reference;
-#[cfg(feature = "rerun")]
-pub mod rrd;
 pub mod scenario;
 pub mod seeds;
 pub mod summary;

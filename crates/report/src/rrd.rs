@@ -26,11 +26,15 @@ use rerun::blueprint::{
 };
 use rerun::{Color, RecordingStream};
 
-use crate::experiment::{self, RecordedTrial};
-use crate::metrics;
-use crate::reference::{Judgement, MeasuredModels, Reference};
-use crate::scenario::Scenario;
-use crate::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
+use testbed::experiment::{self, RecordedTrial};
+use testbed::metrics;
+use testbed::reference::{Judgement, MeasuredModels, Reference};
+use testbed::scenario::Scenario;
+use testbed::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
+
+use crate::ReportError;
+use crate::paper::{action_chart, sensor_chart};
+use crate::plot::{Drawing, encode_png};
 
 /// The timeline everything is logged on.
 pub const TIMELINE: &str = "sim_time";
@@ -45,9 +49,9 @@ pub enum RrdError {
     /// The Rerun SDK refused.
     #[error("rerun: {0}")]
     Rerun(#[from] rerun::RecordingStreamError),
-    /// A camera image could not be encoded.
-    #[error("encoding a camera image: {0}")]
-    Png(#[from] png::EncodingError),
+    /// A camera image or a chart could not be drawn.
+    #[error(transparent)]
+    Picture(#[from] ReportError),
     /// The recording could not be flushed to its sink.
     #[error("finishing the recording: {0}")]
     Flush(String),
@@ -74,7 +78,6 @@ const GREY: [u8; 3] = [150, 150, 150];
 const LIGHT: [u8; 3] = [110, 110, 105];
 const GREEN: [u8; 3] = [40, 200, 60];
 const WHITE: [u8; 3] = [235, 235, 235];
-const RED: [u8; 3] = [255, 110, 60];
 const PURPLE: [u8; 3] = [200, 120, 255];
 const PALE_BLUE: [u8; 3] = [120, 160, 220];
 
@@ -96,8 +99,6 @@ pub struct TrialLog {
     gauge: Option<(f64, f64)>,
     /// The farthest test distance, m: sets the size of what is drawn.
     far_m: f64,
-    action_plot: Plot,
-    sensor_plot: Plot,
 }
 
 impl TrialLog {
@@ -134,20 +135,6 @@ impl TrialLog {
             })
         };
         let far_m = 1e-3 * span(&mut worlds.iter().flat_map(|w| w.1.sensor.iter().map(|p| p.0))).1;
-        let action_plot = Plot::new(
-            "models/action",
-            span(&mut worlds.iter().flat_map(|w| w.1.action.iter().map(|p| p.0))),
-            span(&mut worlds.iter().flat_map(|w| w.1.action.iter().map(|p| p.1))),
-            "command",
-            "velocity (mm/s)",
-        );
-        let sensor_plot = Plot::new(
-            "models/sensor",
-            span(&mut worlds.iter().flat_map(|w| w.1.sensor.iter().map(|p| p.1))),
-            span(&mut worlds.iter().flat_map(|w| w.1.sensor.iter().map(|p| p.0))),
-            "beacon height (px)",
-            "distance (mm)",
-        );
         let log = Self {
             rec,
             reference: reference.clone(),
@@ -155,20 +142,12 @@ impl TrialLog {
             scene: None,
             gauge: None,
             far_m,
-            action_plot,
-            sensor_plot,
         };
         log.layout()?;
         log.styles()?;
-        log.action_plot.axes(&log.rec)?;
-        log.sensor_plot.axes(&log.rec)?;
         for (at_s, world) in &worlds {
             log.rec.set_duration_secs(TIMELINE, at_s.max(0.0));
-            log.action_plot
-                .points(&log.rec, "measured", &world.action, BLUE)?;
-            let sensor: Vec<(f64, f64)> = world.sensor.iter().map(|&(d, o)| (o, d)).collect();
-            log.sensor_plot
-                .points(&log.rec, "measured", &sensor, BLUE)?;
+            log.models(world, None, None)?;
         }
         Ok(log)
     }
@@ -460,18 +439,47 @@ impl TrialLog {
                 self.rec.log(path, &rerun::Scalars::single(v))?;
             }
         }
-        if let Some(a) = j.action_model {
-            let k = metrics::action_error(&a, &world.action).scale;
-            let curve = self.action_plot.curve(|c| k * a.eval(c));
-            self.action_plot.line(&self.rec, "learned", curve, RED)?;
-        }
         if let Some(s) = j.sensor_model {
             let fit = metrics::sensor_error(&s, &world.sensor);
             self.gauge = Some((fit.scale, fit.offset)).filter(|g| g.0.is_finite() && g.0 != 0.0);
-            let curve = self
-                .sensor_plot
-                .curve(|o| fit.offset + fit.scale * s.eval(o));
-            self.sensor_plot.line(&self.rec, "learned", curve, RED)?;
+        }
+        self.models(&world, j.action_model, j.sensor_model)?;
+        Ok(())
+    }
+
+    /// The models against the measured ones, drawn as the run's report draws
+    /// them (Fig. 7a and 7b).
+    fn models(
+        &self,
+        world: &Reference,
+        action: Option<scasm::Polynomial>,
+        sensor: Option<scasm::Polynomial>,
+    ) -> Result<(), RrdError> {
+        let charts = [
+            (
+                "models/action",
+                action_chart(
+                    "action model: learned (best scale) and measured",
+                    &world.action,
+                    None,
+                    action,
+                ),
+            ),
+            (
+                "models/sensor",
+                sensor_chart(
+                    "sensor model: learned (best affine map) and measured",
+                    &world.sensor,
+                    sensor,
+                ),
+            ),
+        ];
+        for (path, chart) in charts {
+            self.rec.log(
+                path,
+                &rerun::EncodedImage::from_file_contents(chart.png()?)
+                    .with_media_type(rerun::MediaType::png()),
+            )?;
         }
         Ok(())
     }
@@ -616,178 +624,9 @@ fn log_shape(
     Ok(())
 }
 
-fn encode_png(rgb: &[u8], (w, h): (u32, u32)) -> Result<Vec<u8>, png::EncodingError> {
-    let mut out = Vec::new();
-    {
-        let mut encoder = png::Encoder::new(&mut out, w, h);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.write_header()?.write_image_data(rgb)?;
-    }
-    Ok(out)
-}
-
-/// A chart drawn in a 2D view (whose y axis points down): data in a box of
-/// [`Plot::W`] x [`Plot::H`] units, with its own axes and tick labels.
-#[derive(Debug, Clone)]
-struct Plot {
-    path: &'static str,
-    x: (f64, f64),
-    y: (f64, f64),
-    x_label: &'static str,
-    y_label: &'static str,
-}
-
-impl Plot {
-    const W: f64 = 400.0;
-    const H: f64 = 300.0;
-
-    /// A chart of data spanning `x` and `y`, with a margin.
-    fn new(
-        path: &'static str,
-        x: (f64, f64),
-        y: (f64, f64),
-        x_label: &'static str,
-        y_label: &'static str,
-    ) -> Self {
-        let pad = |(lo, hi): (f64, f64), f: f64| {
-            let m = f * (hi - lo).max(1e-9);
-            (lo - m, hi + m)
-        };
-        Self {
-            path,
-            x: pad(x, 0.05),
-            y: pad(y, 0.25),
-            x_label,
-            y_label,
-        }
-    }
-
-    fn at(&self, x: f64, y: f64) -> [f32; 2] {
-        [
-            (Self::W * (x - self.x.0) / (self.x.1 - self.x.0)) as f32,
-            (Self::H * (1.0 - (y - self.y.0) / (self.y.1 - self.y.0))) as f32,
-        ]
-    }
-
-    /// `f` over the chart's x range, as strips broken where it leaves the chart.
-    fn curve(&self, f: impl Fn(f64) -> f64) -> Vec<Vec<[f32; 2]>> {
-        const N: u32 = 80;
-        let mut strips: Vec<Vec<[f32; 2]>> = vec![Vec::new()];
-        for i in 0..=N {
-            let x = self.x.0 + (self.x.1 - self.x.0) * f64::from(i) / f64::from(N);
-            let y = f(x);
-            if (self.y.0..=self.y.1).contains(&y) {
-                if let Some(s) = strips.last_mut() {
-                    s.push(self.at(x, y));
-                }
-            } else if strips.last().is_some_and(|s| !s.is_empty()) {
-                strips.push(Vec::new());
-            }
-        }
-        strips.retain(|s| s.len() > 1);
-        strips
-    }
-
-    fn line(
-        &self,
-        rec: &RecordingStream,
-        name: &str,
-        strips: Vec<Vec<[f32; 2]>>,
-        c: [u8; 3],
-    ) -> Result<(), RrdError> {
-        rec.log(
-            format!("{}/{name}", self.path),
-            &rerun::LineStrips2D::new(strips)
-                .with_colors([colour(c)])
-                .with_radii([1.5]),
-        )?;
-        Ok(())
-    }
-
-    fn points(
-        &self,
-        rec: &RecordingStream,
-        name: &str,
-        points: &[(f64, f64)],
-        c: [u8; 3],
-    ) -> Result<(), RrdError> {
-        rec.log(
-            format!("{}/{name}", self.path),
-            &rerun::Points2D::new(points.iter().map(|&(x, y)| self.at(x, y)))
-                .with_colors([colour(c)])
-                .with_radii([3.0]),
-        )?;
-        Ok(())
-    }
-
-    /// The frame, ticks with their values, and the axes' names.
-    fn axes(&self, rec: &RecordingStream) -> Result<(), RrdError> {
-        let (w, h) = (Self::W as f32, Self::H as f32);
-        let mut lines = vec![vec![[0.0, 0.0], [w, 0.0], [w, h], [0.0, h], [0.0, 0.0]]];
-        let (mut at, mut labels) = (Vec::new(), Vec::new());
-        for x in ticks(self.x) {
-            let [px, _] = self.at(x, self.y.0);
-            lines.push(vec![[px, h], [px, h + 6.0]]);
-            at.push([px, h + 16.0]);
-            labels.push(format!("{x}"));
-        }
-        for y in ticks(self.y) {
-            let [_, py] = self.at(self.x.0, y);
-            lines.push(vec![[-6.0, py], [0.0, py]]);
-            at.push([-40.0, py]);
-            labels.push(format!("{y}"));
-        }
-        at.push([0.5 * w, h + 40.0]);
-        labels.push(self.x_label.to_string());
-        at.push([0.0, -16.0]);
-        labels.push(self.y_label.to_string());
-        rec.log_static(
-            format!("{}/axes", self.path),
-            &rerun::LineStrips2D::new(lines)
-                .with_colors([colour(GREY)])
-                .with_radii([0.5]),
-        )?;
-        rec.log_static(
-            format!("{}/labels", self.path),
-            &rerun::Points2D::new(at)
-                .with_radii([0.1])
-                .with_colors([colour(WHITE)])
-                .with_labels(labels)
-                .with_show_labels(true),
-        )?;
-        Ok(())
-    }
-}
-
-/// Round values spaced 1, 2 or 5 times a power of ten, about five across `range`.
-fn ticks((lo, hi): (f64, f64)) -> Vec<f64> {
-    let raw = (hi - lo) / 5.0;
-    if !(raw > 0.0 && raw.is_finite()) {
-        return Vec::new();
-    }
-    let power = 10f64.powf(raw.log10().floor());
-    let step = [1.0, 2.0, 5.0, 10.0]
-        .into_iter()
-        .map(|m| m * power)
-        .find(|&s| s >= raw)
-        .unwrap_or(10.0 * power);
-    let first = (lo / step).ceil() as i64;
-    let last = (hi / step).floor() as i64;
-    (first..=last).map(|k| k as f64 * step).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn ticks_are_round_and_inside() {
-        assert_eq!(ticks((-330.0, 330.0)), [-200.0, 0.0, 200.0]);
-        assert_eq!(ticks((1000.0, 3700.0)), [1000.0, 2000.0, 3000.0]);
-        assert_eq!(ticks((9.0, 44.0)), [10.0, 20.0, 30.0, 40.0]);
-        assert!(ticks((1.0, 1.0)).is_empty());
-    }
 
     #[test]
     fn two_quarter_turns_make_a_half_turn() {
