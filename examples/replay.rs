@@ -84,8 +84,9 @@ fn main() -> Result<()> {
     output::write_config(&out, &scenarios[0], &made_by)?;
     let learner = scenarios[0].learner_name.clone();
     println!(
-        "Replaying {} recorded trials to learner {learner}...",
-        datasets.len()
+        "Replaying {} recorded trials to learner {}...",
+        datasets.len(),
+        testbed::learners::display_name(&learner)
     );
 
     let started = std::time::Instant::now();
@@ -121,14 +122,7 @@ fn main() -> Result<()> {
     );
     output::write_json(&out.join("summary.json"), &run.json)?;
     let (rows, aggregate) = (&run.rows, &run.aggregate);
-    // The final figures are judged in the world as it ends.
-    let (header, table) = report::table::results_table(aggregate, models.last());
-    println!("\n{}", report::table::text(&header, &table));
-    println!("{}", aggregate.describe());
-    println!("\n{}", aggregate.describe_localisation());
-    if let Some(text) = aggregate.describe_recovery(&scenarios[0].changes_text()) {
-        println!("\n{text}");
-    }
+    print!("{}", report::run::console(&run, models, &scenarios[0]));
     let trials: Vec<scasm_testbed::RunTrial> = datasets
         .iter()
         .zip(&scenarios)

@@ -9,22 +9,17 @@
 //! section IV and V demonstrations, the paper's figures as PNG and SVG, and
 //! index.html showing them beside the results table.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Mutex;
 
 use anyhow::{Result, bail, ensure};
 use clap::Parser;
-use report::page::Page;
 use scasm_testbed::{RerunArgs, RunTrial, ScenarioArgs, TrialArgs};
-use testbed::dataset::{self, DatasetMeta};
-use testbed::demos::{Demos, run_demos};
-use testbed::experiment;
-use testbed::output;
+use testbed::demos::run_demos;
 use testbed::provenance::Provenance;
-use testbed::reference::{self, MeasuredModels};
-use testbed::scenario::Scenario;
 use testbed::summary::RunSummary;
-use testbed::trial::{Recording, TrialOutcome};
+use testbed::trial::TrialOutcome;
+use testbed::{experiment, learners, output, reference, run_dir};
 
 /// Run calibration trials on the simulated quadruped (the paper's experiment).
 #[derive(Debug, Parser)]
@@ -41,37 +36,6 @@ struct Args {
     scenario: ScenarioArgs,
     #[command(flatten)]
     rerun: RerunArgs,
-}
-
-/// A trial's directory: its dataset and its learner's files.
-fn write_trial(
-    out: &Path,
-    scenario: &Scenario,
-    models: &MeasuredModels,
-    made_by: &Provenance,
-    (recording, outcome): &(Recording, TrialOutcome),
-) -> std::io::Result<()> {
-    let dir = out.join(format!("trial-{}", recording.seed));
-    dataset::write(
-        &dir,
-        recording,
-        &DatasetMeta::new(scenario, models, recording, made_by),
-    )?;
-    output::write_learner_run(&dir, outcome)
-}
-
-fn write_demos(dir: &Path, demos: &Demos) -> Result<()> {
-    let dir = dir.join("demos");
-    std::fs::create_dir_all(&dir)?;
-    for (name, run) in [
-        ("constant_walk", &demos.constant_walk),
-        ("sensor_from_a0", &demos.sensor_from_a0),
-        ("action_from_rough_sensor", &demos.action_from_rough_sensor),
-    ] {
-        output::write_trace(&dir.join(format!("{name}.csv")), &run.trace)?;
-        output::write_models(&dir.join(format!("{name}.json")), run.action, run.sensor)?;
-    }
-    Ok(())
 }
 
 fn main() -> Result<()> {
@@ -100,27 +64,21 @@ fn main() -> Result<()> {
         },
         scenario.reference_key()
     );
-    output::write_measured_action(&out, &models.action)?;
-    output::write_measured_sensor(&out, &models.sensor)?;
-    for (i, changed) in models.changes.iter().enumerate() {
-        let dir = out.join(format!("world-{}", i + 1));
-        std::fs::create_dir_all(&dir)?;
-        output::write_measured_action(&dir, &changed.models.action)?;
-        output::write_measured_sensor(&dir, &changed.models.sensor)?;
-    }
+    run_dir::write_reference(&out, &models)?;
 
     println!(
         "Running {} trials of {:.0} s ({:?}, learner {}) on {} threads...",
         seeds.len(),
         scenario.duration_s,
         scenario.mode,
-        scenario.learner_name,
+        learners::display_name(&scenario.learner_name),
         rayon::current_num_threads()
     );
     let bar = scasm_testbed::progress_bar(seeds.len() as u64, "trials");
     let write_errors = Mutex::new(Vec::new());
     let results = experiment::run_trials(&scenario, &models, &seeds, &|_, done| {
-        if let Some(e) = done.and_then(|d| write_trial(&out, &scenario, &models, &made_by, d).err())
+        if let Some(e) =
+            done.and_then(|d| run_dir::write_trial(&out, &scenario, &models, &made_by, d).err())
         {
             if let Ok(mut v) = write_errors.lock() {
                 v.push(e.to_string());
@@ -143,21 +101,13 @@ fn main() -> Result<()> {
         &models,
     );
     output::write_json(&out.join("summary.json"), &run.json)?;
-    let (rows, best, aggregate) = (&run.rows, run.best, &run.aggregate);
+    let (rows, aggregate) = (&run.rows, &run.aggregate);
     ensure!(
         aggregate.ok() > 0,
         "no trial finished ok: {}",
         aggregate.describe()
     );
-    // The final figures are judged in the world as it ends.
-    let (header, table) = report::table::results_table(aggregate, models.last());
-    println!("\n{}", report::table::text(&header, &table));
-    println!("{}", aggregate.describe());
-    println!("{}", models.describe(&scenario.stopwatch()));
-    println!("\n{}", aggregate.describe_localisation());
-    if let Some(text) = aggregate.describe_recovery(&scenario.changes_text()) {
-        println!("\n{text}");
-    }
+    print!("{}", report::run::console(&run, &models, &scenario));
 
     let trials: Vec<RunTrial> = results
         .iter()
@@ -177,64 +127,16 @@ fn main() -> Result<()> {
 
     println!("\nRunning the section IV and V demonstrations (Figs. 2a, 2b, 3)...");
     let demos = run_demos(&scenario, &models, seeds[0])?;
-    write_demos(&out, &demos)?;
+    run_dir::write_demos(&out, &demos)?;
     let outcomes: Vec<TrialOutcome> = results
         .into_iter()
         .zip(rows)
         .filter(|(_, row)| row.1.is_ok())
         .filter_map(|((_, r), _)| r.ok().map(|(_, o)| o))
         .collect();
-    let data = report::paper::RunData {
-        measured: models.last(),
-        trials: &outcomes,
-        demos: &demos,
-        best: (best.0, best.1),
-        degrees: (
-            scenario.learner.action_degree,
-            scenario.learner.sensor_degree,
-        ),
-    };
-    let figures = report::paper::write_figures(&out, &data)?;
-    let page = Page {
-        title: "Self-calibration on the simulated quadruped".into(),
-        paragraphs: vec![
-            format!(
-                "{} trials of {:.0} s (seeds {}..{}), learner {}, mode {:?}. Each figure links to its SVG.",
-                rows.len(),
-                scenario.duration_s,
-                scenario.seeds.0,
-                scenario.seeds.1,
-                scenario.learner_name,
-                scenario.mode
-            ),
-            format!(
-                "{}; the means and figures are over the ok trials.",
-                aggregate.describe()
-            ),
-            format!(
-                "The {} (cache key {}).",
-                models.describe(&scenario.stopwatch()),
-                scenario.reference_key()
-            ),
-            format!("Made by {}.", made_by.describe()),
-        ],
-        header,
-        rows: table,
-        figures: figures
-            .iter()
-            .map(|f| {
-                (
-                    f.stem.to_string(),
-                    report::paper::caption(f.stem).to_string(),
-                )
-            })
-            .collect(),
-    };
-    page.write(&out.join("index.html"))?;
-    println!(
-        "  {} figures (PNG and SVG) and index.html written",
-        figures.len()
-    );
+    let figures =
+        report::run::write_page(&out, &scenario, &models, &run, &outcomes, &demos, &made_by)?;
+    println!("  {figures} figures (PNG and SVG) and index.html written");
 
     println!(
         "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",

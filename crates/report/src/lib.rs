@@ -7,11 +7,13 @@
 #![warn(missing_docs)]
 
 pub mod heatmap;
+pub mod leaderboard;
 pub mod page;
 pub mod paper;
 pub mod plot;
 #[cfg(feature = "rerun")]
 pub mod rrd;
+pub mod run;
 pub mod spread;
 pub mod table;
 

@@ -19,6 +19,7 @@ pub mod metrics;
 pub mod output;
 pub mod provenance;
 pub mod reference;
+pub mod run_dir;
 pub mod scenario;
 pub mod seeds;
 pub mod summary;

@@ -1,73 +1,11 @@
-//! Learners side by side: every learner on every scenario of a suite and every
-//! seed, each world recorded once and fed to all the learners, judged by the
-//! paper's protocol. A leaderboard row per (learner, scenario, seed), and a
-//! summary per (learner, scenario): mean and spread over the seeds, the ratio
-//! to the best possible polynomial, and the failed trials counted.
+//! The leaderboard: a row per (learner, scenario, seed) written to and read
+//! from `leaderboard.csv`, shards' rows merged, and a cell per (learner,
+//! scenario) aggregated over its seeds, with the summary table.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::output;
-use crate::scenario::{Scenario, SettingError};
 use crate::summary::{Aggregate, Figures, TrialStatus};
-
-/// The shipped suite's directory, relative to the repository's root.
-pub const SUITE_DIR: &str = "assets/scenarios/suite";
-
-/// A named scenario of a suite.
-#[derive(Debug, Clone)]
-pub struct SuiteScenario {
-    /// Its name (the file's stem).
-    pub name: String,
-    /// The file it came from.
-    pub file: PathBuf,
-    /// The scenario.
-    pub scenario: Scenario,
-}
-
-/// The scenario files in `dir` (`*.toml`, by name), each on top of the paper's
-/// scenario, then `settings` on top of each; only those named in `only` if it is
-/// not empty (an unknown name is an error that lists the known ones).
-pub fn load_suite(
-    dir: &Path,
-    only: &[String],
-    settings: &[String],
-) -> Result<Vec<SuiteScenario>, SettingError> {
-    let file_error = |reason: String| SettingError::File {
-        file: dir.display().to_string(),
-        reason,
-    };
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| file_error(e.to_string()))?
-        .filter_map(Result::ok)
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    files.sort();
-    let name_of = |p: &Path| {
-        p.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default()
-    };
-    let known: Vec<String> = files.iter().map(|p| name_of(p)).collect();
-    if let Some(unknown) = only.iter().find(|n| !known.contains(n)) {
-        return Err(file_error(format!(
-            "no scenario `{unknown}`; the suite has {}",
-            known.join(", ")
-        )));
-    }
-    files
-        .into_iter()
-        .filter(|p| only.is_empty() || only.contains(&name_of(p)))
-        .map(|file| {
-            let scenario = Scenario::from_settings(None, Some(&file), settings)?;
-            Ok(SuiteScenario {
-                name: name_of(&file),
-                file,
-                scenario,
-            })
-        })
-        .collect()
-}
 
 /// One learner's trial on one scenario.
 #[derive(Debug, Clone, PartialEq)]
@@ -178,19 +116,6 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
         });
     }
     Ok(entries)
-}
-
-/// Shard `k` of `n` of a benchmark's worlds, `(scenario index, seed)` in
-/// scenario-major order: every `n`-th from the `k`-th. A world is never split,
-/// so it is still simulated once for all its learners; shards are disjoint
-/// and together cover every world.
-pub fn shard_worlds(scenarios: usize, seeds: &[u64], k: usize, n: usize) -> Vec<(usize, u64)> {
-    (0..scenarios)
-        .flat_map(|s| seeds.iter().map(move |&seed| (s, seed)))
-        .enumerate()
-        .filter(|(i, _)| i % n == k - 1)
-        .map(|(_, w)| w)
-        .collect()
 }
 
 /// The entries of several shards' leaderboards as one, refusing an entry
@@ -375,19 +300,6 @@ mod tests {
                 action_rmse_mm_s: action,
                 ..Figures::filled(f64::NAN)
             },
-        }
-    }
-
-    #[test]
-    fn world_shards_are_disjoint_and_cover_every_world() {
-        let seeds = [3, 4, 5, 6, 7];
-        for n in 1..=4 {
-            let mut all: Vec<(usize, u64)> = (1..=n)
-                .flat_map(|k| shard_worlds(3, &seeds, k, n))
-                .collect();
-            all.sort_unstable();
-            assert_eq!(all, shard_worlds(3, &seeds, 1, 1), "{n} shards");
-            assert_eq!(all.len(), 15);
         }
     }
 

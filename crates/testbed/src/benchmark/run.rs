@@ -1,0 +1,195 @@
+//! Running a benchmark: its learners resolved, one reference per distinct
+//! world, the (scenario, seed) worlds of a shard, each simulated once and fed
+//! to every learner, and the leaderboard's entries.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Mutex;
+
+use crate::benchmark::leaderboard::Entry;
+use crate::benchmark::suite::SuiteScenario;
+use crate::experiment::{self, Job};
+use crate::learners;
+use crate::reference::{self, MeasuredModels};
+use crate::summary;
+
+/// A benchmark ready to run: the suite, the learners, the seeds, and the
+/// measured models of each distinct world of the suite.
+#[derive(Debug)]
+pub struct Benchmark {
+    /// The scenarios.
+    pub suite: Vec<SuiteScenario>,
+    /// The learners as named (a Rust learner's name or `exec:COMMAND`).
+    pub specs: Vec<String>,
+    /// The names they report under, in the same order.
+    pub learners: Vec<String>,
+    /// The seeds.
+    pub seeds: Vec<u64>,
+    /// The measured models, by reference key.
+    pub references: BTreeMap<String, MeasuredModels>,
+}
+
+impl Benchmark {
+    /// Resolves `specs` (a program is started once here, to read its hello)
+    /// and measures, or reads from `cache`, one reference per distinct world
+    /// of `suite`, saying each as it comes.
+    pub fn new(
+        suite: Vec<SuiteScenario>,
+        specs: Vec<String>,
+        seeds: Vec<u64>,
+        cache: &Path,
+        say: &dyn Fn(&str),
+    ) -> Result<Self, String> {
+        let learners = specs
+            .iter()
+            .map(|spec| learners::resolve(spec).map(|l| l.name().to_string()))
+            .collect::<Result<_, _>>()?;
+        let mut references = BTreeMap::new();
+        for s in &suite {
+            let key = s.scenario.reference_key();
+            if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
+                say(&format!(
+                    "reference models for {} ({})...",
+                    s.name,
+                    slot.key()
+                ));
+                let models = reference::measured_models(&s.scenario, Some(cache))
+                    .map_err(|e| format!("{}: {e}", s.name))?;
+                slot.insert(models);
+            }
+        }
+        Ok(Self {
+            suite,
+            specs,
+            learners,
+            seeds,
+            references,
+        })
+    }
+
+    /// The measured models of scenario `s`.
+    pub fn models(&self, s: &SuiteScenario) -> &MeasuredModels {
+        &self.references[&s.scenario.reference_key()]
+    }
+
+    /// The scenarios' names, in order.
+    pub fn names(&self) -> Vec<String> {
+        self.suite.iter().map(|s| s.name.clone()).collect()
+    }
+
+    /// Every `(scenario index, seed)` world of shard `k` of `n`.
+    pub fn worlds(&self, k: usize, n: usize) -> Vec<(usize, u64)> {
+        shard_worlds(self.suite.len(), &self.seeds, k, n)
+    }
+
+    /// Runs every learner on `worlds`, each world simulated once, calling
+    /// `done` as each trial finishes; the entries, in the benchmark's order.
+    pub fn run(&self, worlds: &[(usize, u64)], done: &(dyn Fn() + Sync)) -> Vec<Entry> {
+        let mut jobs: Vec<(usize, Job<'_>)> = Vec::new();
+        for &(i, seed) in worlds {
+            let s = &self.suite[i];
+            for spec in &self.specs {
+                let job = Job {
+                    scenario: &s.scenario,
+                    models: self.models(s),
+                    seed,
+                    learner: spec,
+                };
+                jobs.push((i, job));
+            }
+        }
+        let only: Vec<Job<'_>> = jobs.iter().map(|(_, j)| *j).collect();
+        let entries = Mutex::new(Vec::new());
+        experiment::run_jobs(&only, &|i, result| {
+            let (scenario, job) = &jobs[i];
+            let best = summary::best_possible(&job.models.reference(), &job.scenario.learner);
+            let (seed, status, figures) =
+                summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
+            if let Ok(mut v) = entries.lock() {
+                v.push(Entry {
+                    learner: learners::display_name(job.learner),
+                    scenario: self.suite[*scenario].name.clone(),
+                    seed,
+                    status,
+                    figures,
+                });
+            }
+            done();
+        });
+        let mut entries = entries.into_inner().unwrap_or_else(|p| p.into_inner());
+        self.sort(&mut entries);
+        entries
+    }
+
+    /// Sorts entries by scenario, then learner, then seed.
+    pub fn sort(&self, entries: &mut [Entry]) {
+        entries.sort_by_key(|e| {
+            (
+                self.suite.iter().position(|s| s.name == e.scenario),
+                self.learners.iter().position(|l| *l == e.learner),
+                e.seed,
+            )
+        });
+    }
+
+    /// Refuses merged entries that are not among this benchmark's learners
+    /// and scenarios (its tables could not show them).
+    pub fn check_merged(&self, entries: &[Entry]) -> Result<(), String> {
+        match entries.iter().find(|e| {
+            !self.suite.iter().any(|s| s.name == e.scenario) || !self.learners.contains(&e.learner)
+        }) {
+            Some(e) => Err(format!(
+                "{} on {} seed {} is not among --learners {} and --scenarios {}; merge with the \
+                 flags the shards ran with",
+                e.learner,
+                e.scenario,
+                e.seed,
+                self.learners.join(","),
+                self.names().join(",")
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// The velocity and distance ranges of scenario `name`'s measured models.
+    pub fn ranges(&self, name: &str) -> (f64, f64) {
+        self.suite
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| self.models(s))
+            .map_or((f64::NAN, f64::NAN), |m| {
+                (m.velocity_range_mm_s(), m.distance_range_mm())
+            })
+    }
+}
+
+/// Shard `k` of `n` of a benchmark's worlds, `(scenario index, seed)` in
+/// scenario-major order: every `n`-th from the `k`-th. A world is never split,
+/// so it is still simulated once for all its learners; shards are disjoint
+/// and together cover every world.
+pub fn shard_worlds(scenarios: usize, seeds: &[u64], k: usize, n: usize) -> Vec<(usize, u64)> {
+    (0..scenarios)
+        .flat_map(|s| seeds.iter().map(move |&seed| (s, seed)))
+        .enumerate()
+        .filter(|(i, _)| i % n == k - 1)
+        .map(|(_, w)| w)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn world_shards_are_disjoint_and_cover_every_world() {
+        let seeds = [3, 4, 5, 6, 7];
+        for n in 1..=4 {
+            let mut all: Vec<(usize, u64)> = (1..=n)
+                .flat_map(|k| shard_worlds(3, &seeds, k, n))
+                .collect();
+            all.sort_unstable();
+            assert_eq!(all, shard_worlds(3, &seeds, 1, 1), "{n} shards");
+            assert_eq!(all.len(), 15);
+        }
+    }
+}
