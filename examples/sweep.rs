@@ -7,16 +7,11 @@
 //! deterministic slice (for a batch scheduler's array job); `--merge DIR...`
 //! combines shards' results.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
 
 use anyhow::{Context, Result, bail, ensure};
 use clap::Parser;
-use testbed::experiment;
-use testbed::reference::MeasuredModels;
-use testbed::summary::{self, Figures};
-use testbed::sweep::{self, Axis, CombinationSummary, Results, Row};
+use testbed::sweep::{self, Axis, Results};
 
 /// Sweep settings over a grid of values and seeds.
 #[derive(Debug, Parser)]
@@ -57,15 +52,6 @@ struct Args {
     scenario: scasm_testbed::ScenarioArgs,
 }
 
-fn parse_seeds(spec: &str) -> Result<Vec<u64>> {
-    let (a, b) = spec
-        .split_once("..")
-        .context("--seeds must look like A..B")?;
-    let (a, b): (u64, u64) = (a.trim().parse()?, b.trim().parse()?);
-    ensure!(a < b, "--seeds {spec} is empty");
-    Ok((a..b).collect())
-}
-
 fn axes(args: &Args) -> Result<Vec<Axis>> {
     let mut axes = Vec::new();
     for (key, spec) in [
@@ -88,105 +74,6 @@ fn axes(args: &Args) -> Result<Vec<Axis>> {
         "nothing to sweep: give --gamma, --beta, --t-start or --axis"
     );
     Ok(axes)
-}
-
-/// The combination with the lowest sum of relative errors (action over the
-/// velocity range, sensor over the 2.4 m distance range), among those whose
-/// every run finished ok if there are any such.
-fn best(results: &Results, velocity_range: f64) -> Option<CombinationSummary> {
-    let score = |m: &Figures| m.action_rmse_mm_s / velocity_range + m.sensor_rmse_mm / 2400.0;
-    results
-        .summary()
-        .into_iter()
-        .filter(|g| g.runs_ok > 0 && score(&g.mean).is_finite())
-        .min_by(|a, b| {
-            (a.runs_failed > 0)
-                .cmp(&(b.runs_failed > 0))
-                .then(score(&a.mean).total_cmp(&score(&b.mean)))
-        })
-}
-
-fn report(results: &Results, velocity_range: f64) {
-    let Some(g) = best(results, velocity_range) else {
-        println!("no combination finished with both models learned");
-        return;
-    };
-    let failed: Vec<String> = results
-        .rows()
-        .filter(|r| !r.status.is_ok())
-        .map(|r| format!("{} ({})", r.run.key(), r.status))
-        .collect();
-    if !failed.is_empty() {
-        println!(
-            "\n{} runs did not finish ok and are not in any mean: {}",
-            failed.len(),
-            failed.join("; ")
-        );
-    }
-    let worse: Vec<String> = results
-        .rows()
-        .filter(|r| r.status.is_ok() && r.figures.worse_than_start())
-        .map(|r| r.run.key())
-        .collect();
-    if !worse.is_empty() {
-        println!(
-            "\n{} runs ended worse than their uncalibrated start (in the means): {}",
-            worse.len(),
-            worse.join("; ")
-        );
-    }
-    let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    println!(
-        "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed, {} worse than \
-         their start): {}",
-        g.runs_ok,
-        g.runs_failed,
-        g.runs_worse_than_start,
-        named.join(", ")
-    );
-    let [median, _, p90] = &g.quantiles;
-    println!(
-        "  action {:.1} mm/s (median {:.1}, p90 {:.1}), sensor {:.1} mm (median {:.1}, p90 {:.1}), \
-         consistency {:.3}",
-        g.mean.action_rmse_mm_s,
-        median.action_rmse_mm_s,
-        p90.action_rmse_mm_s,
-        g.mean.sensor_rmse_mm,
-        median.sensor_rmse_mm,
-        p90.sensor_rmse_mm,
-        g.mean.consistency
-    );
-    let paper = [
-        ("learner.gamma", 0.999),
-        ("learner.beta", 1.0 / 30.0),
-        ("learner.t_start", 20.0),
-    ];
-    let is_paper = |g: &CombinationSummary| {
-        g.settings.iter().all(|(k, v)| {
-            paper.iter().find(|p| p.0 == k).is_none_or(|p| {
-                v.parse::<f64>()
-                    .is_ok_and(|x| (x - p.1).abs() <= 1e-3 * p.1)
-            })
-        })
-    };
-    print!(
-        "paper's constants, the first values it tried (learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20)"
-    );
-    match results
-        .summary()
-        .into_iter()
-        .find(|g| is_paper(g) && g.runs_ok > 0)
-    {
-        Some(g) => println!(
-            " ({} runs ok, {} failed):\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
-            g.runs_ok,
-            g.runs_failed,
-            g.mean.action_rmse_mm_s,
-            g.mean.sensor_rmse_mm,
-            g.mean.consistency
-        ),
-        None => println!(": not in this sweep"),
-    }
 }
 
 /// Writes sweep.csv, sweep_summary.csv and the heatmaps.
@@ -230,7 +117,9 @@ fn main() -> Result<()> {
 
     let axes = axes(&args)?;
     let keys: Vec<String> = axes.iter().map(|a| a.key.clone()).collect();
-    let seeds = parse_seeds(&args.seeds)?;
+    let (first, end) =
+        testbed::scenario::parse_seeds(&args.seeds).map_err(|e| anyhow::anyhow!("--seeds: {e}"))?;
+    let seeds: Vec<u64> = (first..end).collect();
     let base = args.scenario.scenario_with(
         &args
             .learner
@@ -258,7 +147,7 @@ fn main() -> Result<()> {
         .map(|r| r.scenario(&base))
         .collect::<Result<Vec<_>, _>>()?;
 
-    let mut results = match Results::read(&args.out)? {
+    let results = match Results::read(&args.out)? {
         Some(r) if r.keys() == keys.as_slice() => r,
         Some(r) => bail!(
             "{} holds a sweep over {:?}, not {:?}; use another --out",
@@ -285,69 +174,24 @@ fn main() -> Result<()> {
         todo.len()
     );
 
-    // One measurement per distinct robot-and-world, before the runs share them.
-    let mut references: BTreeMap<String, MeasuredModels> = BTreeMap::new();
-    for &i in &todo {
-        let key = scenarios[i].reference_key();
-        if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
-            println!("measuring the reference models for {}...", slot.key());
-            slot.insert(testbed::reference::measured_models(
-                &scenarios[i],
-                Some(&args.cache),
-            )?);
-        }
-    }
-
-    // Runs that share a world (every run of a seed, when only the learner's
-    // settings vary) share one recording: the physics runs once per world.
+    // One measurement per distinct robot and world; runs that share a world
+    // (every run of a seed, when only the learner's settings vary) share one
+    // recording: the physics runs once per world.
     let bar = scasm_testbed::progress_bar(todo.len() as u64, "runs");
-    let jobs: Vec<experiment::Job<'_>> = todo
-        .iter()
-        .map(|&i| experiment::Job {
-            scenario: &scenarios[i],
-            models: &references[&scenarios[i].reference_key()],
-            seed: runs[i].seed,
-            learner: &scenarios[i].learner_name,
-        })
-        .collect();
-    let worlds: std::collections::BTreeSet<String> = jobs
-        .iter()
-        .map(|j| experiment::world_key(j.scenario, j.seed))
-        .collect();
-    println!("{} distinct worlds to simulate", worlds.len());
-    let shared = Mutex::new((results.clone(), None::<String>));
-    experiment::run_jobs(&jobs, &|k, result| {
-        let (i, job) = (todo[k], &jobs[k]);
-        let best_possible = summary::best_possible(&job.models.reference(), &job.scenario.learner);
-        let (_, status, figures) = summary::trial_row(
-            job.seed,
-            result.as_ref().map_err(|e| e.to_string()),
-            best_possible,
-        );
-        if let Ok(mut guard) = shared.lock() {
-            guard.0.insert(Row {
-                run: runs[i].clone(),
-                figures,
-                status,
-            });
-            if let Err(e) = guard.0.write(&args.out) {
-                guard.1.get_or_insert(e.to_string());
-            }
-        }
-        bar.inc(1);
-    });
+    let (results, velocity_range) = sweep::run_pending(
+        results,
+        (&runs, &scenarios, &todo),
+        &args.cache,
+        &args.out,
+        &|s| println!("{s}"),
+        &|| bar.inc(1),
+    )?;
     bar.finish();
-    let (done, write_error) = shared.into_inner().unwrap_or_else(|p| p.into_inner());
-    if let Some(e) = write_error {
-        bail!("writing results: {e}");
-    }
-    results = done;
     write_outputs(&results, &args.out)?;
-    let velocity_range = references
-        .values()
-        .next()
-        .map_or(600.0, MeasuredModels::velocity_range_mm_s);
-    report(&results, velocity_range);
+    print!(
+        "{}",
+        report::sweep::describe(&results, velocity_range.unwrap_or(600.0))
+    );
     println!("results in {}", args.out.display());
     Ok(())
 }

@@ -15,6 +15,7 @@ pub mod plot;
 pub mod rrd;
 pub mod run;
 pub mod spread;
+pub mod sweep;
 pub mod table;
 
 use std::path::Path;

@@ -4,10 +4,13 @@
 
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::Mutex;
 
+use crate::experiment::{self, Job};
 use crate::output;
+use crate::reference::{self, MeasuredModels};
 use crate::scenario::{Scenario, SettingError};
-use crate::summary::{Aggregate, Figures, TrialStatus};
+use crate::summary::{self, Aggregate, Figures, TrialStatus};
 
 /// A sweep that cannot be set up or read back.
 #[derive(Debug, thiserror::Error)]
@@ -26,6 +29,9 @@ pub enum SweepError {
     /// A setting cannot be applied.
     #[error(transparent)]
     Setting(#[from] SettingError),
+    /// A world's reference models cannot be measured.
+    #[error("measuring the reference models: {0}")]
+    Reference(String),
     /// `--shard K/N` is malformed.
     #[error("bad shard `{0}`: expected K/N with 1 <= K <= N, or auto")]
     Shard(String),
@@ -498,6 +504,80 @@ fn file_error(path: &Path, e: std::io::Error) -> SweepError {
         path: path.display().to_string(),
         reason: e.to_string(),
     }
+}
+
+/// Runs `runs[i]` (in scenario `scenarios[i]`) for every `i` in `todo`,
+/// measuring one reference per distinct robot and world first (read from
+/// `cache` if there) and simulating each world once for all the runs that
+/// share it; `results` gets each row as it finishes and is rewritten whole
+/// to `out` each time, so a killed sweep resumes where it stopped. `say`
+/// reports what it measures, `done` each finished run. Returns the results
+/// and the first world's velocity range (mm/s), for scoring.
+pub fn run_pending(
+    results: Results,
+    (runs, scenarios, todo): (&[Run], &[Scenario], &[usize]),
+    cache: &Path,
+    out: &Path,
+    say: &dyn Fn(&str),
+    done: &(dyn Fn() + Sync),
+) -> Result<(Results, Option<f64>), SweepError> {
+    let mut references: BTreeMap<String, MeasuredModels> = BTreeMap::new();
+    for &i in todo {
+        let key = scenarios[i].reference_key();
+        if let std::collections::btree_map::Entry::Vacant(slot) = references.entry(key) {
+            say(&format!(
+                "measuring the reference models for {}...",
+                slot.key()
+            ));
+            let models = reference::measured_models(&scenarios[i], Some(cache))
+                .map_err(|e| SweepError::Reference(e.to_string()))?;
+            slot.insert(models);
+        }
+    }
+    let jobs: Vec<Job<'_>> = todo
+        .iter()
+        .map(|&i| Job {
+            scenario: &scenarios[i],
+            models: &references[&scenarios[i].reference_key()],
+            seed: runs[i].seed,
+            learner: &scenarios[i].learner_name,
+        })
+        .collect();
+    let worlds: std::collections::BTreeSet<String> = jobs
+        .iter()
+        .map(|j| experiment::world_key(j.scenario, j.seed))
+        .collect();
+    say(&format!("{} distinct worlds to simulate", worlds.len()));
+    let shared = Mutex::new((results, None::<SweepError>));
+    experiment::run_jobs(&jobs, &|k, result| {
+        let (i, job) = (todo[k], &jobs[k]);
+        let best_possible = summary::best_possible(&job.models.reference(), &job.scenario.learner);
+        let (_, status, figures) = summary::trial_row(
+            job.seed,
+            result.as_ref().map_err(|e| e.to_string()),
+            best_possible,
+        );
+        if let Ok(mut guard) = shared.lock() {
+            guard.0.insert(Row {
+                run: runs[i].clone(),
+                figures,
+                status,
+            });
+            if let Err(e) = guard.0.write(out) {
+                guard.1.get_or_insert(e);
+            }
+        }
+        done();
+    });
+    let (results, write_error) = shared.into_inner().unwrap_or_else(|p| p.into_inner());
+    if let Some(e) = write_error {
+        return Err(e);
+    }
+    let velocity_range = references
+        .values()
+        .next()
+        .map(MeasuredModels::velocity_range_mm_s);
+    Ok((results, velocity_range))
 }
 
 #[cfg(test)]

@@ -1,0 +1,133 @@
+//! A sweep's results for people: the best combination, the paper's
+//! constants beside it, and the runs that did not finish ok or ended worse
+//! than their start.
+
+use testbed::summary::Figures;
+use testbed::sweep::{CombinationSummary, Results};
+
+/// `writeln!` into a String (which cannot fail).
+macro_rules! outln {
+    ($out:expr, $($arg:tt)*) => {{
+        $out.push_str(&format!($($arg)*));
+        $out.push('\n');
+    }};
+}
+
+/// `write!` into a String.
+macro_rules! out_ {
+    ($out:expr, $($arg:tt)*) => {{
+        $out.push_str(&format!($($arg)*));
+    }};
+}
+
+/// The combination with the lowest sum of relative errors (action over the
+/// velocity range, sensor over the 2.4 m distance range), among those whose
+/// every run finished ok if there are any such.
+pub fn best(results: &Results, velocity_range: f64) -> Option<CombinationSummary> {
+    let score = |m: &Figures| m.action_rmse_mm_s / velocity_range + m.sensor_rmse_mm / 2400.0;
+    results
+        .summary()
+        .into_iter()
+        .filter(|g| g.runs_ok > 0 && score(&g.mean).is_finite())
+        .min_by(|a, b| {
+            (a.runs_failed > 0)
+                .cmp(&(b.runs_failed > 0))
+                .then(score(&a.mean).total_cmp(&score(&b.mean)))
+        })
+}
+
+/// What the console shows of a sweep: the runs not ok, those worse than
+/// their start, the best combination and the paper's constants.
+pub fn describe(results: &Results, velocity_range: f64) -> String {
+    let mut out = String::new();
+    let Some(g) = best(results, velocity_range) else {
+        return "no combination finished with both models learned\n".into();
+    };
+    let failed: Vec<String> = results
+        .rows()
+        .filter(|r| !r.status.is_ok())
+        .map(|r| format!("{} ({})", r.run.key(), r.status))
+        .collect();
+    if !failed.is_empty() {
+        outln!(
+            out,
+            "\n{} runs did not finish ok and are not in any mean: {}",
+            failed.len(),
+            failed.join("; ")
+        );
+    }
+    let worse: Vec<String> = results
+        .rows()
+        .filter(|r| r.status.is_ok() && r.figures.worse_than_start())
+        .map(|r| r.run.key())
+        .collect();
+    if !worse.is_empty() {
+        outln!(
+            out,
+            "\n{} runs ended worse than their uncalibrated start (in the means): {}",
+            worse.len(),
+            worse.join("; ")
+        );
+    }
+    let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    outln!(
+        out,
+        "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed, {} worse than \
+         their start): {}",
+        g.runs_ok,
+        g.runs_failed,
+        g.runs_worse_than_start,
+        named.join(", ")
+    );
+    let [median, _, p90] = &g.quantiles;
+    outln!(
+        out,
+        "  action {:.1} mm/s (median {:.1}, p90 {:.1}), sensor {:.1} mm (median {:.1}, p90 {:.1}), \
+         consistency {:.3}",
+        g.mean.action_rmse_mm_s,
+        median.action_rmse_mm_s,
+        p90.action_rmse_mm_s,
+        g.mean.sensor_rmse_mm,
+        median.sensor_rmse_mm,
+        p90.sensor_rmse_mm,
+        g.mean.consistency
+    );
+    let paper = [
+        ("learner.gamma", 0.999),
+        ("learner.beta", 1.0 / 30.0),
+        ("learner.t_start", 20.0),
+    ];
+    // Only a sweep over one of the paper's constants has them to compare.
+    if !results.keys().iter().any(|k| paper.iter().any(|p| p.0 == k)) {
+        return out;
+    }
+    let is_paper = |g: &CombinationSummary| {
+        g.settings.iter().all(|(k, v)| {
+            paper.iter().find(|p| p.0 == k).is_none_or(|p| {
+                v.parse::<f64>()
+                    .is_ok_and(|x| (x - p.1).abs() <= 1e-3 * p.1)
+            })
+        })
+    };
+    out_!(
+        out,
+        "paper's constants, the first values it tried (learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20)"
+    );
+    match results
+        .summary()
+        .into_iter()
+        .find(|g| is_paper(g) && g.runs_ok > 0)
+    {
+        Some(g) => outln!(
+            out,
+            " ({} runs ok, {} failed):\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
+            g.runs_ok,
+            g.runs_failed,
+            g.mean.action_rmse_mm_s,
+            g.mean.sensor_rmse_mm,
+            g.mean.consistency
+        ),
+        None => outln!(out, ": not in this sweep"),
+    }
+    out
+}
