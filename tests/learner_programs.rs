@@ -245,3 +245,30 @@ fn a_rust_learners_own_settings_change_it_and_others_keys_are_refused() {
     assert_eq!(p["learner.batch-ml.solve_every_s"], 40.0);
     assert_eq!(p["learner.forward_degree"], 5.0);
 }
+
+#[test]
+fn learners_own_settings_are_sweep_axes() {
+    use testbed::sweep::{self, Axis};
+    let (scenario, ..) = setup();
+    let mut base = scenario.clone();
+    base.set(&format!("learner.name={PY_INVERSE}"))
+        .expect("named");
+    let axes = [
+        Axis::parse("learner.batch-ml.solve_every_s", "5,20").expect("batch-ml's"),
+        Axis::parse("learner.inverse-fit-py.scale_px", "10:10:20").expect("a program's"),
+    ];
+    let runs = sweep::runs(&axes, &[1]);
+    assert_eq!(runs.len(), 4);
+    for run in &runs {
+        let s = run.scenario(&base).expect("applies");
+        for (key, value) in &run.settings {
+            let want: f64 = value.parse().expect("a number");
+            assert_eq!(s.learner_own.get(key), Some(&want), "{key}");
+        }
+    }
+    let bad = Axis::parse("learner.batch-ml.solve_every_s", "-1,5").expect("parses");
+    let e = sweep::runs(&[bad], &[1])[0]
+        .scenario(&base)
+        .expect_err("out of range");
+    assert!(e.to_string().contains("(0, inf)"), "{e}");
+}

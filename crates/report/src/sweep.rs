@@ -98,7 +98,11 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         ("learner.t_start", 20.0),
     ];
     // Only a sweep over one of the paper's constants has them to compare.
-    if !results.keys().iter().any(|k| paper.iter().any(|p| p.0 == k)) {
+    if !results
+        .keys()
+        .iter()
+        .any(|k| paper.iter().any(|p| p.0 == k))
+    {
         return out;
     }
     let is_paper = |g: &CombinationSummary| {
