@@ -165,6 +165,18 @@ impl RobotDescription {
     /// Checks a parsed URDF with the legs and camera `map` names.
     pub fn from_urdf(urdf: Robot, map: &RobotMap) -> Result<Self, RobotError> {
         let root_link = check_tree(&urdf)?;
+        // Every collision shape is simulated or the robot is refused: none
+        // is dropped (the loader would skip a mesh without a word).
+        for link in &urdf.links {
+            for c in &link.collision {
+                if let Geometry::Mesh { filename, .. } = &c.geometry {
+                    return Err(RobotError::MeshCollision {
+                        link: link.name.clone(),
+                        file: filename.clone(),
+                    });
+                }
+            }
+        }
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;

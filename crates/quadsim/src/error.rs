@@ -68,6 +68,19 @@ pub enum RobotError {
         /// What is wrong.
         reason: String,
     },
+    /// A link has a mesh collision shape, which the testbed does not load:
+    /// it would be dropped, and the robot would collide as it does not.
+    #[error(
+        "link `{link}` has a mesh collision shape ({file}), which this testbed does not load \
+         yet; rather than drop it, the robot is refused: give the link box, cylinder, capsule \
+         or sphere collision shapes (visual meshes are fine)"
+    )]
+    MeshCollision {
+        /// The link's name.
+        link: String,
+        /// The mesh's file, as the URDF names it.
+        file: String,
+    },
     /// A leg's lower segment has no spherical foot at its end.
     #[error("link `{link}` needs one sphere collision as its foot")]
     MissingFoot {

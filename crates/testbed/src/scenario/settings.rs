@@ -23,7 +23,7 @@ impl Scenario {
     /// then a scenario file's settings (if any), then `key=value` settings in
     /// order: what a command line asks for. The robot is chosen first wherever
     /// it is set (`robot.*` settings reset the world to the robot's scale, see
-    /// [`RobotScale`]), so other settings always apply on top of it.
+    /// [`quadsim::RobotScale`]), so other settings always apply on top of it.
     pub fn from_settings(
         urdf: Option<&Path>,
         file: Option<&Path>,
