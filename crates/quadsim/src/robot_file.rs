@@ -348,6 +348,17 @@ impl RobotFile {
 }
 
 fn parse(label: &str, text: &str) -> Result<FileToml, RobotError> {
+    // A URDF given where a robot file goes says so, not "TOML parse error".
+    if text.trim_start().starts_with('<') {
+        return Err(RobotError::RobotFile {
+            file: label.to_string(),
+            reason: "this is a URDF (XML), not a robot file: a robot file is TOML that names a \
+                     URDF (`urdf = \"...\"`) and its legs' joints (README, \"Bring your own \
+                     robot\"); a URDF in the shipped robot's naming can be given as it is with \
+                     --urdf"
+                .into(),
+        });
+    }
     toml::from_str(text).map_err(|e| RobotError::RobotFile {
         file: label.to_string(),
         reason: e.to_string(),

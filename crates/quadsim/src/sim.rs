@@ -405,6 +405,24 @@ impl QuadrupedSim {
         }
     }
 
+    /// The servos' position setpoints now, rad, leg by leg in the
+    /// description's order (abduction, hip, knee): what the joint motors
+    /// track (for a peer simulator to replay the same motion).
+    pub fn servo_targets(&self) -> &[f64] {
+        self.servos.positions()
+    }
+
+    /// The contact points the solver works with after the last step.
+    pub fn contact_points(&self) -> usize {
+        self.world
+            .narrow_phase
+            .contact_pairs()
+            .filter(|p| p.has_any_active_contact())
+            .flat_map(|p| p.solver_manifolds().iter())
+            .map(|m| m.data.solver_contacts.len())
+            .sum()
+    }
+
     /// The frame taken since the last call, if any (the host's 20 Hz readings).
     pub fn take_frame(&mut self) -> Option<Frame> {
         if self.fresh_frame {

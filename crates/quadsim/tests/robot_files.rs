@@ -138,6 +138,8 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
         expect_error(&local.replace(from, to), &[needle]);
     }
     assert!(RobotFile::load("no-such-robot").is_err());
+    // A URDF where a robot file goes is named as such, not as bad TOML.
+    expect_error(ERS7_URDF, &["this is a URDF", "--urdf"]);
 }
 
 #[test]

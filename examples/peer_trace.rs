@@ -1,0 +1,156 @@
+//! The robot's motion for a peer simulator, and this build's own step time on
+//! it: the robot stands for 0.5 s and then walks at `--command` for the rest of
+//! `--seconds`. Every physics step's servo targets go to DIR/targets.csv, and
+//! what a peer needs to build the same robot goes to DIR/peer.json: the URDF,
+//! the time step, the servo gains and torque limits, the joints in order, the
+//! start, and this build's full step (servos, walk engine and 20 Hz camera
+//! included) in microseconds, the best of `--repeats` runs, with its contact
+//! points per step.
+//!
+//! `scripts/peer/compare.sh` runs this and then MuJoCo on the same targets.
+//!
+//! `cargo run --release --example peer_trace -- --robot trotter --out target/peer`
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Result;
+use clap::Parser;
+use quadsim::{QuadrupedSim, RobotDescription, RobotFile, SimConfig};
+
+/// Record a walk's servo targets for a peer simulator, and time this build on it.
+#[derive(Debug, Parser)]
+struct Args {
+    /// A shipped robot's name or a robot file's path (default: the ERS-7).
+    #[arg(long)]
+    robot: Option<String>,
+    /// The walk command after the first 0.5 s.
+    #[arg(long, default_value_t = 300.0)]
+    command: f64,
+    /// Simulated seconds.
+    #[arg(long, default_value_t = 10.0)]
+    seconds: f64,
+    /// Timed runs; the best is reported.
+    #[arg(long, default_value_t = 5)]
+    repeats: usize,
+    /// Output directory.
+    #[arg(long, default_value = "target/peer")]
+    out: PathBuf,
+}
+
+/// The robot, its world, and its URDF's text.
+fn robot(name: Option<&str>) -> Result<(RobotDescription, SimConfig, String)> {
+    match name {
+        None => Ok((
+            RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
+            SimConfig::default(),
+            quadsim::ERS7_URDF.to_string(),
+        )),
+        Some(name) => {
+            let file = RobotFile::load(name)?;
+            Ok((file.description.clone(), file.sim_config(), file.urdf_text))
+        }
+    }
+}
+
+/// Runs the motion from a fresh robot; calls `each` after every step.
+fn run(
+    d: &RobotDescription,
+    config: SimConfig,
+    args: &Args,
+    mut each: impl FnMut(&QuadrupedSim),
+) -> Result<()> {
+    let mut sim = QuadrupedSim::new(d, config)?;
+    let steps = (args.seconds / config.dt_s).round() as usize;
+    let stand = (0.5 / config.dt_s).round() as usize;
+    for k in 0..steps {
+        if k == stand {
+            sim.set_command(args.command)?;
+        }
+        sim.step();
+        each(&sim);
+    }
+    Ok(())
+}
+
+fn main() -> Result<()> {
+    let args = Args::parse();
+    let (d, config, urdf_text) = robot(args.robot.as_deref())?;
+    std::fs::create_dir_all(&args.out)?;
+    let urdf = args.out.join("robot.urdf");
+    std::fs::write(&urdf, &urdf_text)?;
+    let start = QuadrupedSim::new(&d, config)?;
+    let (torso, first_targets) = (start.torso(), start.servo_targets().to_vec());
+
+    // The motion, recorded.
+    let mut targets = std::io::BufWriter::new(std::fs::File::create(args.out.join("targets.csv"))?);
+    let (mut contacts, mut steps, mut upright, mut end_x) = (0usize, 0usize, true, 0.0);
+    run(&d, config, &args, |sim| {
+        end_x = sim.torso().position_m[0];
+        let row: Vec<String> = sim.servo_targets().iter().map(|t| t.to_string()).collect();
+        let _ = writeln!(targets, "{}", row.join(","));
+        contacts += sim.contact_points();
+        steps += 1;
+        upright &= sim.is_upright();
+    })?;
+    targets.flush()?;
+
+    // The same motion, timed.
+    let mut best = f64::INFINITY;
+    for _ in 0..args.repeats.max(1) {
+        let started = Instant::now();
+        run(&d, config, &args, |_| {})?;
+        best = best.min(started.elapsed().as_secs_f64());
+    }
+    let us_per_step = 1e6 * best / steps as f64;
+    let joints: Vec<&str> = d
+        .legs
+        .iter()
+        .flat_map(|l| l.joints.iter().map(String::as_str))
+        .collect();
+    let effort: Vec<f64> = joints
+        .iter()
+        .map(|name| {
+            d.urdf
+                .joints
+                .iter()
+                .find(|j| j.name == *name)
+                .map_or(f64::NAN, |j| j.limit.effort * config.servo.torque_scale)
+        })
+        .collect();
+    let peer = serde_json::json!({
+        "urdf": "robot.urdf",
+        "root_link": d.root_link,
+        "dt_s": config.dt_s,
+        "seconds": args.seconds,
+        "command": args.command,
+        "kp_nm_per_rad": config.servo.kp_nm_per_rad,
+        "kd_nm_s_per_rad": config.servo.kd_nm_s_per_rad,
+        "effort_nm": effort,
+        "friction": config.friction,
+        "joints": joints,
+        "start_position_m": torso.position_m,
+        "start_orientation_xyzw": torso.orientation,
+        "start_joints_rad": first_targets,
+        "steps": steps,
+        "upright": upright,
+        "travelled_m": end_x - torso.position_m[0],
+        "us_per_step": us_per_step,
+        "contacts_per_step": contacts as f64 / steps as f64,
+    });
+    std::fs::write(
+        args.out.join("peer.json"),
+        serde_json::to_string_pretty(&peer)?,
+    )?;
+    println!(
+        "this build: {us_per_step:.1} us per full step (best of {}), {:.0}x real time, {:.2} \
+         contact points per step, {steps} steps, upright {upright}, walked {:.2} m; motion in {}",
+        args.repeats,
+        config.dt_s * 1e6 / us_per_step,
+        contacts as f64 / steps as f64,
+        end_x - torso.position_m[0],
+        args.out.display()
+    );
+    Ok(())
+}
