@@ -64,7 +64,7 @@ fn main() -> Result<()> {
         "Trial {} ({} s, learner {}) {}...",
         args.seed,
         runner.total_frames() as f64 * scenario.sim.camera.frame_period_s,
-        scenario.learner_name,
+        learners::display_name(&scenario.learner_name),
         args.rerun
             .as_ref()
             .map_or("streaming to the Rerun viewer".into(), |p| format!(
