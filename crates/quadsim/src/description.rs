@@ -121,6 +121,22 @@ impl LegDescription {
     pub fn is_front(&self) -> bool {
         self.hip_in_torso_m[0] > 0.0
     }
+
+    /// Which way the knee bends: the way its URDF range allows if the range
+    /// lies on one side of straight (a knee that is never straight), else
+    /// front knees like elbows (-1) and hind knees like knees (+1).
+    pub fn knee_sign(&self) -> f64 {
+        let [lower, upper] = self.limits_rad[2];
+        if upper <= 0.0 {
+            -1.0
+        } else if lower >= 0.0 {
+            1.0
+        } else if self.is_front() {
+            -1.0
+        } else {
+            1.0
+        }
+    }
 }
 
 /// A checked robot description.
@@ -340,10 +356,11 @@ fn check_leg(
     let mut velocity_rad_s = [0.0; 3];
     for (k, jn) in names.iter().enumerate() {
         let j = joint(urdf, jn)?;
-        if !matches!(j.joint_type, JointType::Revolute) {
+        let continuous = matches!(j.joint_type, JointType::Continuous);
+        if !matches!(j.joint_type, JointType::Revolute) && !continuous {
             return Err(bad_joint(
                 jn,
-                format!("must be revolute, is {:?}", j.joint_type),
+                format!("must be revolute or continuous, is {:?}", j.joint_type),
             ));
         }
         let axis = j.axis.xyz.0;
@@ -353,11 +370,18 @@ fn check_leg(
                 format!("axis must be {:?}, is {axis:?}", axes[k]),
             ));
         }
-        let (lo, hi) = (j.limit.lower, j.limit.upper);
-        if !(lo.is_finite() && hi.is_finite() && lo < 0.0 && hi > 0.0) {
+        // A continuous joint has no limits: the gait's own range is its range.
+        // A revolute joint's range need not hold its zero (a knee that is
+        // never straight): the gait is checked against it as the robot is read.
+        let (lo, hi) = if continuous {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            (j.limit.lower, j.limit.upper)
+        };
+        if !continuous && !(lo.is_finite() && hi.is_finite() && lo < hi) {
             return Err(bad_joint(
                 jn,
-                format!("limits must satisfy lower < 0 < upper, are [{lo}, {hi}]"),
+                format!("limits must be finite with lower < upper, are [{lo}, {hi}]"),
             ));
         }
         if !(j.limit.effort.is_finite() && j.limit.effort > 0.0) {
@@ -423,16 +447,15 @@ fn check_leg(
         .ok_or_else(|| RobotError::MissingLink {
             link: shank_link.clone(),
         })?;
-    let foot = shank
-        .collision
-        .iter()
-        .find_map(|c| match c.geometry {
-            Geometry::Sphere { radius } if radius > 0.0 => Some((c.origin.xyz.0, radius)),
-            _ => None,
-        })
-        .ok_or_else(|| RobotError::MissingFoot {
-            link: shank_link.clone(),
-        })?;
+    let foot = find_foot(
+        urdf,
+        shank,
+        [0.0; 3],
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    )
+    .ok_or_else(|| RobotError::MissingFoot {
+        link: shank_link.clone(),
+    })?;
     if foot.0[0].abs() > 1e-9 || foot.0[1].abs() > 1e-9 || foot.0[2] >= 0.0 {
         return Err(RobotError::MissingFoot {
             link: shank_link.clone(),
@@ -449,5 +472,55 @@ fn check_leg(
         limits_rad,
         effort_nm,
         velocity_rad_s,
+    })
+}
+
+/// A 3 x 3 rotation matrix, row-major.
+type Rotation = [[f64; 3]; 3];
+
+/// URDF's roll-pitch-yaw (fixed axes x, y, z): `Rz(yaw) Ry(pitch) Rx(roll)`.
+fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
+    let (sr, cr, sp, cp, sy, cy) = (r.sin(), r.cos(), p.sin(), p.cos(), y.sin(), y.cos());
+    [
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
+}
+
+fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+}
+
+fn compose(a: &Rotation, b: &Rotation) -> Rotation {
+    [0, 1, 2].map(|i| [0, 1, 2].map(|k| (0..3).map(|j| a[i][j] * b[j][k]).sum()))
+}
+
+/// The foot: the first sphere collision on `link`, or on a link fixed to it
+/// (a toe, as many published URDFs have), as its centre in the frame where
+/// `link` sits at `at` turned by `turn`, and its radius.
+fn find_foot(
+    urdf: &Robot,
+    link: &urdf_rs::Link,
+    at: [f64; 3],
+    turn: Rotation,
+) -> Option<([f64; 3], f64)> {
+    let place = |v: [f64; 3]| {
+        let r = rotate(&turn, v);
+        [at[0] + r[0], at[1] + r[1], at[2] + r[2]]
+    };
+    let own = link.collision.iter().find_map(|c| match c.geometry {
+        Geometry::Sphere { radius } if radius > 0.0 => Some((place(c.origin.xyz.0), radius)),
+        _ => None,
+    });
+    own.or_else(|| {
+        urdf.joints
+            .iter()
+            .filter(|j| j.parent.link == link.name && matches!(j.joint_type, JointType::Fixed))
+            .find_map(|j| {
+                let child = urdf.links.iter().find(|l| l.name == j.child.link)?;
+                let turn = compose(&turn, &rpy_matrix(j.origin.rpy.0));
+                find_foot(urdf, child, place(j.origin.xyz.0), turn)
+            })
     })
 }

@@ -48,15 +48,15 @@ pub struct WalkEngine {
 }
 
 impl WalkEngine {
-    /// An engine for these legs (front knees bend like elbows, hind like knees;
-    /// diagonal pairs step together).
+    /// An engine for these legs (each knee bending as
+    /// [`LegDescription::knee_sign`] says; diagonal pairs step together).
     pub fn new(config: WalkConfig, legs: &[LegDescription]) -> Self {
         let legs = legs
             .iter()
             .map(|l| {
                 let front = l.is_front();
                 Leg {
-                    geometry: l.geometry(if front { -1.0 } else { 1.0 }),
+                    geometry: l.geometry(l.knee_sign()),
                     side: l.side(),
                     // fl with hr, fr with hl.
                     phase_offset: if front == (l.side() > 0.0) { 0.0 } else { 0.5 },

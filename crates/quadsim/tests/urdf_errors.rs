@@ -68,9 +68,9 @@ fn a_joint_to_a_missing_link_is_named() {
 fn a_wrong_joint_type_or_axis_is_named() {
     let text = ERS7_URDF.replace(
         r#"joint name="fr_hip" type="revolute""#,
-        r#"joint name="fr_hip" type="continuous""#,
+        r#"joint name="fr_hip" type="prismatic""#,
     );
-    expect_error(&text, "`fr_hip`: must be revolute");
+    expect_error(&text, "`fr_hip`: must be revolute or continuous");
     let text = ERS7_URDF.replacen(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 0 1"/>"#, 1);
     expect_error(&text, "`fl_hip`: axis must be");
 }

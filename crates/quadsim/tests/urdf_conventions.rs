@@ -1,0 +1,102 @@
+//! URDF conventions of published robots that the testbed reads as they are:
+//! knees whose range does not hold the straight leg (and which bend the way
+//! that range says), continuous joints, and a foot on a link fixed to the
+//! lower leg (a toe). Each test edits the shipped ERS-7 into the convention;
+//! without its support, the robot is refused.
+
+use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+
+fn edited(from: &str, to: &str) -> String {
+    assert!(ERS7_URDF.contains(from), "the edit `{from}` applies");
+    ERS7_URDF.replace(from, to)
+}
+
+/// Stands the robot for two seconds and steps in place for two more.
+fn stands(d: &RobotDescription) {
+    let mut sim = QuadrupedSim::new(d, SimConfig::default()).expect("a world");
+    sim.advance(2.0);
+    assert!(sim.is_upright(), "standing");
+    sim.set_command(150.0).expect("finite");
+    sim.advance(2.0);
+    assert!(sim.is_upright(), "walking");
+}
+
+#[test]
+fn a_knee_that_is_never_straight_bends_the_way_its_range_allows() {
+    // The hind knees may only bend backwards (negative), unlike the ERS-7's.
+    let mut text = ERS7_URDF.to_string();
+    for leg in ["hl", "hr"] {
+        let joint = format!(r#"<joint name="{leg}_knee" type="revolute">"#);
+        let at = text.find(&joint).expect("the knee");
+        let limit = text[at..]
+            .find(r#"lower="-2.4" upper="2.4""#)
+            .expect("its limit")
+            + at;
+        text.replace_range(limit..limit + 25, r#"lower="-2.4" upper="-0.1""#);
+    }
+    let d = RobotDescription::from_urdf_str(&text).expect("a knee range without zero loads");
+    for leg in &d.legs {
+        assert_eq!(leg.knee_sign(), -1.0, "{}", leg.name);
+    }
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    let signs: Vec<f64> = shipped.legs.iter().map(|l| l.knee_sign()).collect();
+    assert_eq!(
+        signs,
+        [-1.0, -1.0, 1.0, 1.0],
+        "the ERS-7 keeps its elbows and knees"
+    );
+    stands(&d);
+}
+
+#[test]
+fn a_continuous_joint_takes_the_gaits_own_range() {
+    let text = edited(
+        r#"<joint name="fl_abduction" type="revolute">"#,
+        r#"<joint name="fl_abduction" type="continuous">"#,
+    );
+    let d = RobotDescription::from_urdf_str(&text).expect("a continuous abduction loads");
+    assert_eq!(d.legs[0].limits_rad[0], [f64::NEG_INFINITY, f64::INFINITY]);
+    stands(&d);
+}
+
+#[test]
+fn a_foot_on_a_link_fixed_to_the_lower_leg_is_the_foot() {
+    let sphere = r#"<collision><origin xyz="0 0 -0.07" rpy="0 0 0"/><geometry><sphere radius="0.012"/></geometry></collision>"#;
+    let mut text = ERS7_URDF.to_string();
+    for leg in ["fl", "fr", "hl", "hr"] {
+        let link = format!(r#"<link name="{leg}_shank">"#);
+        let at = text.find(&link).expect("the shank");
+        let s = text[at..].find(sphere).expect("its foot") + at;
+        text.replace_range(s..s + sphere.len(), "");
+        // The toe hangs 0.05 m below the knee, turned upside down (a half
+        // turn about x), so its sphere, 0.02 m "up" in its own frame, is
+        // 0.02 m further down.
+        let toe = format!(
+            r#"<link name="{leg}_toe"><inertial><mass value="0.002"/><inertia ixx="1e-7" ixy="0" ixz="0" iyy="1e-7" iyz="0" izz="1e-7"/></inertial>
+            <collision><origin xyz="0 0 0.02" rpy="0 0 0"/><geometry><sphere radius="0.012"/></geometry></collision></link>
+            <joint name="{leg}_toe_fixed" type="fixed"><parent link="{leg}_shank"/><child link="{leg}_toe"/><origin xyz="0 0 -0.05" rpy="3.141592653589793 0 0"/></joint>"#
+        );
+        text = text.replace("</robot>", &format!("{toe}\n</robot>"));
+    }
+    let d = RobotDescription::from_urdf_str(&text).expect("a toe's sphere is the foot");
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    for (toe, own) in d.legs.iter().zip(&shipped.legs) {
+        assert!(
+            (toe.shank_m - own.shank_m).abs() < 1e-12,
+            "{} {}",
+            toe.shank_m,
+            own.shank_m
+        );
+        assert_eq!(toe.foot_radius_m, own.foot_radius_m);
+    }
+    stands(&d);
+    // A leg that ends in no sphere at all is still refused, naming its link.
+    let bare = text.replace(
+        r#"<sphere radius="0.012"/>"#,
+        r#"<box size="0.01 0.01 0.01"/>"#,
+    );
+    let e = RobotDescription::from_urdf_str(&bare)
+        .expect_err("no foot")
+        .to_string();
+    assert!(e.contains("fl_shank") && e.contains("foot"), "{e}");
+}
