@@ -378,7 +378,8 @@ fn check_leg(
         } else {
             (j.limit.lower, j.limit.upper)
         };
-        if !continuous && !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        let ranged = lo.is_finite() && hi.is_finite() && lo < hi;
+        if !(continuous || ranged) {
             return Err(bad_joint(
                 jn,
                 format!("limits must be finite with lower < upper, are [{lo}, {hi}]"),
