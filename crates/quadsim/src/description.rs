@@ -276,7 +276,7 @@ fn link_names(urdf: &Robot) -> Result<HashSet<&str>, RobotError> {
 /// Every joint names existing links, every link but the root has exactly one
 /// parent, and every link is reachable from the root (the first link without a
 /// parent): returns the root.
-fn check_tree(urdf: &Robot) -> Result<String, RobotError> {
+pub(crate) fn check_tree(urdf: &Robot) -> Result<String, RobotError> {
     let names = link_names(urdf)?;
     let mut parent_of: HashMap<&str, &str> = HashMap::new();
     for j in &urdf.joints {

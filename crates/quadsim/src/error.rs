@@ -81,6 +81,12 @@ pub enum RobotError {
         /// The mesh's file, as the URDF names it.
         file: String,
     },
+    /// A bare URDF's legs could not be found from its tree.
+    #[error("the legs cannot be found from the URDF: {reason}")]
+    LegsNotFound {
+        /// What was found instead.
+        reason: String,
+    },
     /// A leg's lower segment has no spherical foot at its end.
     #[error("link `{link}` needs one sphere collision as its foot")]
     MissingFoot {

@@ -15,6 +15,7 @@ pub mod beacon;
 pub mod camera;
 pub mod config;
 pub mod description;
+pub mod discover;
 pub mod error;
 pub mod gait;
 pub mod heading;

@@ -275,6 +275,9 @@ impl RobotFile {
             file: label.clone(),
             reason: format!("cannot read it: {e}"),
         })?;
+        if text.trim_start().starts_with('<') {
+            return Self::from_bare_urdf(path, text);
+        }
         let file = parse(&label, &text)?;
         let urdf_path = path
             .parent()
@@ -284,6 +287,39 @@ impl RobotFile {
             file: label.clone(),
             reason: format!("cannot read its URDF {}: {e}", urdf_path.display()),
         })?;
+        Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)
+    }
+
+    /// A bare URDF as a robot: its legs and camera found from its tree
+    /// ([`crate::discover`]), the scaled default gait. Its robot file is the
+    /// one that says what was found (see [`RobotFile::text`]).
+    fn from_bare_urdf(path: &Path, urdf_text: String) -> Result<Self, RobotError> {
+        let label = path.display().to_string();
+        let in_file = |e: RobotError| RobotError::RobotFile {
+            file: label.clone(),
+            reason: e.to_string(),
+        };
+        let urdf = urdf_rs::read_from_string(&urdf_text).map_err(|e| {
+            in_file(RobotError::Parse {
+                reason: e.to_string(),
+            })
+        })?;
+        let map = crate::discover::discover(&urdf).map_err(in_file)?;
+        let file_name = path
+            .file_name()
+            .map_or_else(|| label.clone(), |n| n.to_string_lossy().into_owned());
+        let [fl, fr, hl, hr] = map.legs.clone();
+        let text = format!(
+            "# Found from the URDF's tree (no robot file was given).\nname = {name:?}\nurdf = \
+             {file_name:?}\n\n[legs]\nfront_left = {fl:?}\nfront_right = {fr:?}\nrear_left = \
+             {hl:?}\nrear_right = {hr:?}\n\n[camera]\nparent = {parent:?}\nxyz = {xyz:?}\nrpy = \
+             {rpy:?}\n",
+            name = urdf.name,
+            parent = map.camera.parent,
+            xyz = map.camera.xyz,
+            rpy = map.camera.rpy,
+        );
+        let file = parse(&label, &text)?;
         Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)
     }
 
@@ -348,17 +384,6 @@ impl RobotFile {
 }
 
 fn parse(label: &str, text: &str) -> Result<FileToml, RobotError> {
-    // A URDF given where a robot file goes says so, not "TOML parse error".
-    if text.trim_start().starts_with('<') {
-        return Err(RobotError::RobotFile {
-            file: label.to_string(),
-            reason: "this is a URDF (XML), not a robot file: a robot file is TOML that names a \
-                     URDF (`urdf = \"...\"`) and its legs' joints (README, \"Bring your own \
-                     robot\"); a URDF in the shipped robot's naming can be given as it is with \
-                     --urdf"
-                .into(),
-        });
-    }
     toml::from_str(text).map_err(|e| RobotError::RobotFile {
         file: label.to_string(),
         reason: e.to_string(),

@@ -138,8 +138,6 @@ fn an_unusable_robot_file_names_the_file_and_the_fault() {
         expect_error(&local.replace(from, to), &[needle]);
     }
     assert!(RobotFile::load("no-such-robot").is_err());
-    // A URDF where a robot file goes is named as such, not as bad TOML.
-    expect_error(ERS7_URDF, &["this is a URDF", "--urdf"]);
 }
 
 #[test]
@@ -237,4 +235,39 @@ fn every_shipped_robot_walks_forwards_backwards_and_in_place() {
             "{name} in place: {in_place:.2}"
         );
     }
+}
+
+#[test]
+fn a_bare_urdf_is_a_robot_whose_legs_are_found_from_its_tree() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("quadsim-bare-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let bare = RobotFile::from_file(&write(&dir, "ers7.urdf", ERS7_URDF)).expect("legs found");
+    let named = RobotDescription::from_urdf_str(ERS7_URDF).expect("the ERS-7's naming");
+    let joints = |d: &RobotDescription| d.legs.iter().map(|l| l.joints.clone()).collect::<Vec<_>>();
+    assert_eq!(joints(&bare.description), joints(&named));
+    assert_eq!(bare.description.legs, named.legs);
+    assert_eq!(bare.description.camera.parent, "torso");
+    // Its robot file says what was found, and reads back to the same robot.
+    assert!(
+        bare.text
+            .contains("front_left = [\"fl_abduction\", \"fl_hip\", \"fl_knee\"]"),
+        "{}",
+        bare.text
+    );
+    let again = RobotFile::from_file(&write(&dir, "found.toml", &bare.text)).expect("reads back");
+    assert_eq!(again.description.legs, bare.description.legs);
+    // Three legs (a foot turned into a box) are named as what was found.
+    let three = ERS7_URDF.replacen(
+        r#"<geometry><sphere radius="0.012"/></geometry>"#,
+        r#"<geometry><box size="0.02 0.02 0.02"/></geometry>"#,
+        1,
+    );
+    let e = RobotFile::from_file(&write(&dir, "three.urdf", &three))
+        .expect_err("three legs")
+        .to_string();
+    assert!(
+        e.contains("three.urdf") && e.contains("3 chains") && e.contains("hr_abduction"),
+        "{e}"
+    );
 }

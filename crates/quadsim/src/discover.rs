@@ -1,0 +1,133 @@
+//! A URDF's legs and camera found from its tree, for a robot given as a bare
+//! URDF: a leg is a chain of three actuated joints from the root link to a
+//! sphere foot (on the lower leg or on a link fixed to it); front and rear,
+//! left and right come from where the hips sit; the camera looks forward from
+//! the front of the root link. A robot file still says any of it instead.
+
+use std::collections::BTreeMap;
+
+use urdf_rs::{Geometry, JointType, Robot};
+
+use crate::description::{CameraMount, LEG_NAMES, RobotMap, check_tree};
+use crate::error::RobotError;
+
+/// The actuated joints (revolute or continuous) from the root down to `link`,
+/// root first, or `None` if a joint on the way is neither actuated nor fixed.
+fn chain<'a>(urdf: &'a Robot, link: &str) -> Option<Vec<&'a urdf_rs::Joint>> {
+    let mut out = Vec::new();
+    let mut at = link;
+    while let Some(j) = urdf.joints.iter().find(|j| j.child.link == at) {
+        match j.joint_type {
+            JointType::Revolute | JointType::Continuous => out.push(j),
+            JointType::Fixed => {}
+            _ => return None,
+        }
+        at = &j.parent.link;
+    }
+    out.reverse();
+    Some(out)
+}
+
+/// The legs and camera of `urdf` (see the module's documentation), or what
+/// was found instead.
+pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
+    let root = check_tree(urdf)?;
+    let not_found = |reason: String| RobotError::LegsNotFound { reason };
+    // Every link with a sphere collision ends a chain; legs are the chains of
+    // three, each counted once (a toe and its lower leg share one).
+    let mut legs: BTreeMap<Vec<String>, [f64; 3]> = BTreeMap::new();
+    let mut others: Vec<String> = Vec::new();
+    for link in &urdf.links {
+        let sphere = link
+            .collision
+            .iter()
+            .any(|c| matches!(c.geometry, Geometry::Sphere { .. }));
+        if !sphere {
+            continue;
+        }
+        let Some(joints) = chain(urdf, &link.name) else {
+            others.push(format!(
+                "{} (below a joint that is neither actuated nor fixed)",
+                link.name
+            ));
+            continue;
+        };
+        if joints.len() == 3 && joints[0].parent.link == root {
+            let names = joints.iter().map(|j| j.name.clone()).collect();
+            legs.insert(names, joints[0].origin.xyz.0);
+        } else if !joints.is_empty() {
+            others.push(format!(
+                "{} ({} actuated joints from the root)",
+                link.name,
+                joints.len()
+            ));
+        }
+    }
+    if legs.len() != 4 {
+        return Err(not_found(format!(
+            "{} chains of three actuated joints from the root `{root}` to a sphere foot ({}){}; a \
+             quadruped has four: give a robot file that names them",
+            legs.len(),
+            legs.keys()
+                .map(|k| k.join(" > "))
+                .collect::<Vec<_>>()
+                .join("; "),
+            if others.is_empty() {
+                String::new()
+            } else {
+                format!(", and spheres elsewhere: {}", others.join(", "))
+            }
+        )));
+    }
+    // Front and rear, left and right, about the hips' centre.
+    let n = legs.len() as f64;
+    let centre = [0, 1].map(|k| legs.values().map(|h| h[k]).sum::<f64>() / n);
+    let mut named: [Option<[String; 3]>; 4] = Default::default();
+    for (joints, hip) in &legs {
+        let (front, left) = (hip[0] > centre[0], hip[1] > centre[1]);
+        let slot = match (front, left) {
+            (true, true) => 0,
+            (true, false) => 1,
+            (false, true) => 2,
+            (false, false) => 3,
+        };
+        if named[slot].is_some() {
+            return Err(not_found(format!(
+                "two legs' hips sit {} of the hips' centre ({}): a robot file must say which is which",
+                LEG_NAMES[slot], joints[0]
+            )));
+        }
+        named[slot] = Some([joints[0].clone(), joints[1].clone(), joints[2].clone()]);
+    }
+    let [Some(fl), Some(fr), Some(hl), Some(hr)] = named else {
+        return Err(not_found("the hips are not one in each corner".into()));
+    };
+    // The camera at the middle of the root's front face (its collision box's,
+    // or the front hips' line), looking forward.
+    let root_link = urdf.links.iter().find(|l| l.name == root);
+    let front_face = root_link
+        .into_iter()
+        .flat_map(|l| &l.collision)
+        .filter_map(|c| match c.geometry {
+            Geometry::Box { size } if c.origin.rpy.0.iter().all(|v| v.abs() < 1e-9) => {
+                Some(c.origin.xyz.0[0] + 0.5 * size.0[0])
+            }
+            _ => None,
+        })
+        .fold(f64::NEG_INFINITY, f64::max);
+    let front_x = if front_face.is_finite() {
+        front_face
+    } else {
+        legs.values()
+            .map(|h| h[0])
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    Ok(RobotMap {
+        legs: [fl, fr, hl, hr],
+        camera: CameraMount {
+            parent: root,
+            xyz: [front_x, 0.0, 0.0],
+            rpy: [0.0; 3],
+        },
+    })
+}
