@@ -197,8 +197,20 @@ impl RobotDescription {
         for link in &urdf.links {
             let m = link.inertial.mass.value;
             let i = &link.inertial.inertia;
-            let frame_only = link.collision.is_empty() && m == 0.0;
-            if frame_only {
+            // A link with no <inertial> (urdf-rs reads mass 0) carries no
+            // mass: a frame, or shapes riding on the body it is fixed to. A
+            // body that moves must have mass somewhere in it.
+            let massless = m == 0.0 && [i.ixx, i.iyy, i.izz].iter().all(|v| *v == 0.0);
+            if massless {
+                if let Some(j) = moving_without_mass(&urdf, &link.name) {
+                    return Err(RobotError::BadInertia {
+                        link: link.name.clone(),
+                        reason: format!(
+                            "it moves (joint `{j}`) but neither it nor any link fixed to it has \
+                             mass"
+                        ),
+                    });
+                }
                 continue;
             }
             if !(m.is_finite() && m > 0.0) {
@@ -524,4 +536,25 @@ fn find_foot(
                 find_foot(urdf, child, place(j.origin.xyz.0), turn)
             })
     })
+}
+
+/// The joint that moves `link`, if `link` is moved by a joint (not fixed to
+/// its parent) and neither it nor any link fixed below it has mass.
+fn moving_without_mass(urdf: &Robot, link: &str) -> Option<String> {
+    let joint = urdf.joints.iter().find(|j| j.child.link == link)?;
+    if matches!(joint.joint_type, JointType::Fixed) {
+        return None;
+    }
+    fn has_mass(urdf: &Robot, link: &str) -> bool {
+        let own = urdf
+            .links
+            .iter()
+            .any(|l| l.name == link && l.inertial.mass.value > 0.0);
+        own || urdf.joints.iter().any(|j| {
+            j.parent.link == link
+                && matches!(j.joint_type, JointType::Fixed)
+                && has_mass(urdf, &j.child.link)
+        })
+    }
+    (!has_mass(urdf, link)).then(|| joint.name.clone())
 }

@@ -100,3 +100,35 @@ fn a_foot_on_a_link_fixed_to_the_lower_leg_is_the_foot() {
         .to_string();
     assert!(e.contains("fl_shank") && e.contains("foot"), "{e}");
 }
+
+#[test]
+fn a_link_with_no_inertial_carries_no_mass() {
+    // The head (a collision box, fixed to the torso) with no <inertial>.
+    let head = r#"<link name="head">
+    <inertial>"#;
+    let at = ERS7_URDF.find(head).expect("the head");
+    let end = ERS7_URDF[at..].find("</inertial>").expect("its inertial") + at;
+    let mut text = ERS7_URDF.to_string();
+    text.replace_range(
+        at + head.len() - "<inertial>".len()..end + "</inertial>".len(),
+        "",
+    );
+    let d = RobotDescription::from_urdf_str(&text).expect("a massless fixed link loads");
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    assert!(d.total_mass_kg < shipped.total_mass_kg);
+    stands(&d);
+    // A moving link with no mass anywhere in its body is refused.
+    let thigh = r#"<link name="fl_thigh">
+    <inertial>"#;
+    let at = text.find(thigh).expect("the thigh");
+    let end = text[at..].find("</inertial>").expect("its inertial") + at;
+    let mut moving = text.clone();
+    moving.replace_range(
+        at + thigh.len() - "<inertial>".len()..end + "</inertial>".len(),
+        "",
+    );
+    let e = RobotDescription::from_urdf_str(&moving)
+        .expect_err("a moving link without mass")
+        .to_string();
+    assert!(e.contains("fl_thigh") && e.contains("fl_hip"), "{e}");
+}
