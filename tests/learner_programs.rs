@@ -129,6 +129,8 @@ fn each_way_a_program_misbehaves_fails_its_trial_saying_how() {
             "did not answer within 0.5 s",
         ),
         ("refuse", &[], "gave up: I refuse"),
+        ("twice", &[], "wrote a line nobody asked for"),
+        ("refuse_event", &[], "gave up: I refuse this event"),
     ] {
         let spec = bad(mode);
         match learn(&spec, settings) {

@@ -111,6 +111,11 @@ impl Child {
         }
     }
 
+    /// A line the child wrote that nobody has asked for yet, if any.
+    pub fn unasked(&self) -> Option<String> {
+        self.lines.try_recv().ok()
+    }
+
     /// How the child ended, waiting a moment for it (its stdout closed or
     /// its stdin broke, so it is ending or has ended).
     fn ended(&mut self) -> Option<String> {

@@ -196,6 +196,21 @@ impl ExecLearner {
             return Models::default();
         };
         if !state.current {
+            // A protocol is one answer per query: a line written unasked
+            // (a second answer, a stray print) is a fault, not a late answer.
+            // (An `error` may come at any time: a learner that refuses an event.)
+            if let Some(extra) = state.child.unasked() {
+                let said = match protocol::parse(&extra) {
+                    Ok(Said::Error(m)) => format!("gave up: {m}"),
+                    _ => format!(
+                        "wrote a line nobody asked for: `{}` (one answer per query; logs go to \
+                         stderr)",
+                        extra.chars().take(160).collect::<String>()
+                    ),
+                };
+                self.fail(with_stderr(&said, &state.child));
+                return Models::default();
+            }
             let answer = state
                 .child
                 .send(protocol::QUERY)
@@ -234,10 +249,15 @@ impl CalibrationLearner for ExecLearner {
         let sent = match self.state.get_mut() {
             Ok(state) => {
                 state.current = false;
-                state
-                    .child
-                    .send(&protocol::event_line(event))
-                    .map_err(|f| fault(&f, &state.child, "while taking events"))
+                state.child.send(&protocol::event_line(event)).map_err(|f| {
+                    // A learner that said why before it went, said so.
+                    match state.child.unasked().map(|l| protocol::parse(&l)) {
+                        Some(Ok(Said::Error(m))) => {
+                            with_stderr(&format!("gave up: {m}"), &state.child)
+                        }
+                        _ => fault(&f, &state.child, "while taking events"),
+                    }
+                })
             }
             Err(_) => Err("its state is poisoned".into()),
         };
