@@ -81,7 +81,7 @@ fn main() -> Result<()> {
     let urdf = args.out.join("robot.urdf");
     std::fs::write(&urdf, &urdf_text)?;
     let start = QuadrupedSim::new(&d, config)?;
-    let (torso, first_targets) = (start.torso(), start.servo_targets().to_vec());
+    let (torso, first_targets) = (start.torso(), start.servo_targets());
 
     // The motion, recorded.
     let mut targets = std::io::BufWriter::new(std::fs::File::create(args.out.join("targets.csv"))?);

@@ -89,8 +89,13 @@ pub struct LegDescription {
     pub foot_radius_m: f64,
     /// Joint names: abduction, hip, knee.
     pub joints: [String; 3],
-    /// Joint limits `[lower, upper]`, rad, in the same order.
+    /// Joint limits `[lower, upper]`, rad, in the same order, about the
+    /// canonical axes (abduction +x, hip and knee +y).
     pub limits_rad: [[f64; 2]; 3],
+    /// Each joint's URDF axis against its canonical one: 1, or -1 for an
+    /// axis that points the other way (an angle about the canonical axis is
+    /// this times the joint's own).
+    pub axis_signs: [f64; 3],
     /// Torque limits from the URDF, N m, in the same order.
     pub effort_nm: [f64; 3],
     /// Joint speed limits from the URDF, rad/s, in the same order.
@@ -366,6 +371,7 @@ fn check_leg(
     let mut limits_rad = [[0.0; 2]; 3];
     let mut effort_nm = [0.0; 3];
     let mut velocity_rad_s = [0.0; 3];
+    let mut axis_signs = [1.0; 3];
     for (k, jn) in names.iter().enumerate() {
         let j = joint(urdf, jn)?;
         let continuous = matches!(j.joint_type, JointType::Continuous);
@@ -375,13 +381,23 @@ fn check_leg(
                 format!("must be revolute or continuous, is {:?}", j.joint_type),
             ));
         }
+        // An axis may point either way along its canonical one.
         let axis = j.axis.xyz.0;
-        if axis.iter().zip(&axes[k]).any(|(a, b)| (a - b).abs() > 1e-9) {
+        let along = |sign: f64| {
+            axis.iter()
+                .zip(&axes[k])
+                .all(|(a, b)| (a - sign * b).abs() <= 1e-9)
+        };
+        let axis_sign = if along(1.0) {
+            1.0
+        } else if along(-1.0) {
+            -1.0
+        } else {
             return Err(bad_joint(
                 jn,
-                format!("axis must be {:?}, is {axis:?}", axes[k]),
+                format!("axis must be {:?} or its opposite, is {axis:?}", axes[k]),
             ));
-        }
+        };
         // A continuous joint has no limits: the gait's own range is its range.
         // A revolute joint's range need not hold its zero (a knee that is
         // never straight): the gait is checked against it as the robot is read.
@@ -409,7 +425,14 @@ fn check_leg(
                 format!("velocity limit must be > 0, is {}", j.limit.velocity),
             ));
         }
-        limits_rad[k] = [lo, hi];
+        // About the canonical axis, the range is the joint's, mirrored if
+        // its axis points the other way.
+        limits_rad[k] = if axis_sign > 0.0 {
+            [lo, hi]
+        } else {
+            [-hi, -lo]
+        };
+        axis_signs[k] = axis_sign;
         effort_nm[k] = j.limit.effort;
         velocity_rad_s[k] = j.limit.velocity;
         joints.push(j);
@@ -483,6 +506,7 @@ fn check_leg(
         foot_radius_m: foot.1,
         joints: names.clone(),
         limits_rad,
+        axis_signs,
         effort_nm,
         velocity_rad_s,
     })

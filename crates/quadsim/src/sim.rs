@@ -36,6 +36,10 @@ pub struct QuadrupedSim {
     camera_mount: Pose,
     /// Per leg: abduction, hip, knee.
     joints: Vec<[MultibodyJointHandle; 3]>,
+    /// Each leg joint's URDF axis against its canonical one (see
+    /// [`crate::description::LegDescription::axis_signs`]): the servos and
+    /// the gait work about the canonical axes.
+    axis_signs: Vec<[f64; 3]>,
     /// Per leg: the URDF's effort limits, N m, and velocity limits, rad/s
     /// (before the servo config's scales).
     urdf_limits: Vec<([f64; 3], [f64; 3])>,
@@ -210,6 +214,7 @@ impl QuadrupedSim {
             camera_parent,
             camera_mount,
             joints,
+            axis_signs: description.legs.iter().map(|l| l.axis_signs).collect(),
             torque_limits: Vec::new(),
             speed_limits: Vec::new(),
             urdf_limits,
@@ -311,7 +316,8 @@ impl QuadrupedSim {
                     .get(*h)
                     .and_then(|(mb, id)| mb.link(id))
                 {
-                    disp[link.assembly_id()] = angles[3 * leg + k] as Real;
+                    disp[link.assembly_id()] =
+                        (self.axis_signs[leg][k] * angles[3 * leg + k]) as Real;
                 }
             }
         }
@@ -345,8 +351,9 @@ impl QuadrupedSim {
                 let i = 3 * leg + k;
                 if let Some((mb, id)) = self.world.multibody_joints.get_mut(*h) {
                     if let Some(motor) = angular_motor(mb, id) {
-                        motor.target_pos = self.servos.positions()[i] as Real;
-                        motor.target_vel = self.servos.velocities()[i] as Real;
+                        let sign = self.axis_signs[leg][k];
+                        motor.target_pos = (sign * self.servos.positions()[i]) as Real;
+                        motor.target_vel = (sign * self.servos.velocities()[i]) as Real;
                         motor.stiffness = s.kp_nm_per_rad as Real;
                         motor.damping = s.kd_nm_s_per_rad as Real;
                         motor.max_force = self.torque_limits[leg][k] as Real;
@@ -406,10 +413,16 @@ impl QuadrupedSim {
     }
 
     /// The servos' position setpoints now, rad, leg by leg in the
-    /// description's order (abduction, hip, knee): what the joint motors
-    /// track (for a peer simulator to replay the same motion).
-    pub fn servo_targets(&self) -> &[f64] {
-        self.servos.positions()
+    /// description's order (abduction, hip, knee), each about its joint's
+    /// own URDF axis: what the joint motors track (for a peer simulator to
+    /// replay the same motion).
+    pub fn servo_targets(&self) -> Vec<f64> {
+        self.servos
+            .positions()
+            .iter()
+            .enumerate()
+            .map(|(i, p)| self.axis_signs[i / 3][i % 3] * p)
+            .collect()
     }
 
     /// The contact points the solver works with after the last step.

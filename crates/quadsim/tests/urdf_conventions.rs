@@ -132,3 +132,46 @@ fn a_link_with_no_inertial_carries_no_mass() {
         .to_string();
     assert!(e.contains("fl_thigh") && e.contains("fl_hip"), "{e}");
 }
+
+#[test]
+fn a_joint_whose_axis_points_the_other_way_moves_the_robot_the_same() {
+    // Every knee's axis flipped (0 -1 0): the same joints, their angles
+    // counted the other way, so the same robot.
+    let text = ERS7_URDF.replace(
+        r#"<origin xyz="0 0 -0.07" rpy="0 0 0"/><axis xyz="0 1 0"/><limit lower="-2.4" upper="2.4""#,
+        r#"<origin xyz="0 0 -0.07" rpy="0 0 0"/><axis xyz="0 -1 0"/><limit lower="-2.4" upper="2.4""#,
+    );
+    assert_eq!(
+        text.matches(r#"<axis xyz="0 -1 0"/>"#).count(),
+        4,
+        "the four knees"
+    );
+    let flipped = RobotDescription::from_urdf_str(&text).expect("a flipped axis loads");
+    assert!(
+        flipped
+            .legs
+            .iter()
+            .all(|l| l.axis_signs == [1.0, 1.0, -1.0])
+    );
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    let run = |d: &RobotDescription| {
+        let mut sim = QuadrupedSim::new(d, SimConfig::default()).expect("a world");
+        sim.advance(0.5);
+        sim.set_command(300.0).expect("finite");
+        sim.advance(2.0);
+        sim.torso().position_m
+    };
+    // The same robot up to rounding (rapier's f32, which 2.5 s of footfalls
+    // amplify to tens of micrometres); a wrong sign would fold the knees.
+    let (a, b) = (run(&flipped), run(&shipped));
+    for k in 0..3 {
+        assert!((a[k] - b[k]).abs() < 1e-3, "torso at {a:?} against {b:?}");
+    }
+    assert!(b[0] - (-2.4) > 0.3, "it walked: {b:?}");
+    // An axis along neither way is still refused.
+    let skew = ERS7_URDF.replacen(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 0.7 0.7"/>"#, 1);
+    let e = RobotDescription::from_urdf_str(&skew)
+        .expect_err("skew")
+        .to_string();
+    assert!(e.contains("or its opposite"), "{e}");
+}
