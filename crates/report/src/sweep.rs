@@ -2,23 +2,10 @@
 //! constants beside it, and the runs that did not finish ok or ended worse
 //! than their start.
 
+use std::fmt::Write;
+
 use testbed::summary::Figures;
 use testbed::sweep::{CombinationSummary, Results};
-
-/// `writeln!` into a String (which cannot fail).
-macro_rules! outln {
-    ($out:expr, $($arg:tt)*) => {{
-        $out.push_str(&format!($($arg)*));
-        $out.push('\n');
-    }};
-}
-
-/// `write!` into a String.
-macro_rules! out_ {
-    ($out:expr, $($arg:tt)*) => {{
-        $out.push_str(&format!($($arg)*));
-    }};
-}
 
 /// The combination with the lowest sum of relative errors (action over the
 /// velocity range, sensor over the 2.4 m distance range), among those whose
@@ -49,7 +36,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         .map(|r| format!("{} ({})", r.run.key(), r.status))
         .collect();
     if !failed.is_empty() {
-        outln!(
+        let _ = writeln!(
             out,
             "\n{} runs did not finish ok and are not in any mean: {}",
             failed.len(),
@@ -62,7 +49,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         .map(|r| r.run.key())
         .collect();
     if !worse.is_empty() {
-        outln!(
+        let _ = writeln!(
             out,
             "\n{} runs ended worse than their uncalibrated start (in the means): {}",
             worse.len(),
@@ -70,7 +57,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         );
     }
     let named: Vec<String> = g.settings.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    outln!(
+    let _ = writeln!(
         out,
         "\nbest combination (lowest sum of relative errors; {} runs ok, {} failed, {} worse than \
          their start): {}",
@@ -80,7 +67,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         named.join(", ")
     );
     let [median, _, p90] = &g.quantiles;
-    outln!(
+    let _ = writeln!(
         out,
         "  action {:.1} mm/s (median {:.1}, p90 {:.1}), sensor {:.1} mm (median {:.1}, p90 {:.1}), \
          consistency {:.3}",
@@ -113,16 +100,17 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
             })
         })
     };
-    out_!(
+    let _ = write!(
         out,
         "paper's constants, the first values it tried (learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20)"
     );
-    match results
+    // Writing to a String cannot fail.
+    let _ = match results
         .summary()
         .into_iter()
         .find(|g| is_paper(g) && g.runs_ok > 0)
     {
-        Some(g) => outln!(
+        Some(g) => writeln!(
             out,
             " ({} runs ok, {} failed):\n  action {:.1} mm/s, sensor {:.1} mm, consistency {:.3}",
             g.runs_ok,
@@ -131,7 +119,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
             g.mean.sensor_rmse_mm,
             g.mean.consistency
         ),
-        None => outln!(out, ": not in this sweep"),
-    }
+        None => writeln!(out, ": not in this sweep"),
+    };
     out
 }

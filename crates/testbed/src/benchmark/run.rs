@@ -85,29 +85,31 @@ impl Benchmark {
     /// Runs every learner on `worlds`, each world simulated once, calling
     /// `done` as each trial finishes; the entries, in the benchmark's order.
     pub fn run(&self, worlds: &[(usize, u64)], done: &(dyn Fn() + Sync)) -> Vec<Entry> {
-        let mut jobs: Vec<(usize, Job<'_>)> = Vec::new();
+        // (scenario index, learner index, job)
+        let mut jobs: Vec<(usize, usize, Job<'_>)> = Vec::new();
         for &(i, seed) in worlds {
             let s = &self.suite[i];
-            for spec in &self.specs {
+            for (l, spec) in self.specs.iter().enumerate() {
                 let job = Job {
                     scenario: &s.scenario,
                     models: self.models(s),
                     seed,
                     learner: spec,
                 };
-                jobs.push((i, job));
+                jobs.push((i, l, job));
             }
         }
-        let only: Vec<Job<'_>> = jobs.iter().map(|(_, j)| *j).collect();
+        let only: Vec<Job<'_>> = jobs.iter().map(|(.., j)| *j).collect();
         let entries = Mutex::new(Vec::new());
         experiment::run_jobs(&only, &|i, result| {
-            let (scenario, job) = &jobs[i];
+            let (scenario, learner, job) = &jobs[i];
             let best = summary::best_possible(&job.models.reference(), &job.scenario.learner);
             let (seed, status, figures) =
                 summary::trial_row(job.seed, result.as_ref().map_err(|e| e.to_string()), best);
             if let Ok(mut v) = entries.lock() {
                 v.push(Entry {
-                    learner: learners::display_name(job.learner),
+                    // The name it reports under, resolved once in `new`.
+                    learner: self.learners[*learner].clone(),
                     scenario: self.suite[*scenario].name.clone(),
                     seed,
                     status,
