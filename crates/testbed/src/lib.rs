@@ -12,6 +12,7 @@ pub mod blanks;
 pub mod dataset;
 pub mod demos;
 pub mod experiment;
+pub mod floor;
 pub mod learners;
 pub mod localiser;
 pub mod measure;

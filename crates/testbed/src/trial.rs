@@ -12,6 +12,7 @@ use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
 use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
 pub use crate::blanks::Blanks;
+use crate::floor::{Floor, Sample};
 use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
@@ -382,6 +383,10 @@ pub struct TrialOutcome {
     pub realtime_factor: f64,
     /// When the world changed during the trial, s (see [`Reference::at`]).
     pub world_changes_s: Vec<f64>,
+    /// The trial's information floor at the learner's degrees (see
+    /// [`crate::floor`]), if the learner's degrees were given and the world
+    /// did not change.
+    pub floor: Option<Floor>,
 }
 
 /// What the localisers with the learner's models are compared with, beyond
@@ -499,7 +504,18 @@ pub fn learn(
         trace.push(row);
     }
     let end_s = frames.last().map_or(0.0, FrameRecord::end_s);
+    let samples: Vec<Sample> = trace
+        .iter()
+        .map(|r| Sample {
+            t_s: r.t_s,
+            command: r.command,
+            obs_px: r.obs_px,
+            x_true_mm: r.x_true_mm,
+        })
+        .collect();
+    let floor = best_degrees.and_then(|degrees| Floor::of(&samples, reference, degrees));
     Ok(TrialOutcome {
+        floor,
         seed: recording.seed,
         last: reference.judge(end_s, learner),
         start: a0_baseline.map(|b| reference.judge(end_s, b)),

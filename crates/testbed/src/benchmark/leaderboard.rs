@@ -199,7 +199,8 @@ pub fn cells(entries: &[Entry], learners: &[String], scenarios: &[String]) -> Ve
 
 /// The summary table: per scenario and learner, each error's mean +- std
 /// and median [p10, p90], their ratios to the best polynomials (mean;
-/// median), the consistency, the trials worse than their start (in the
+/// median), the mean information floor (and the mean error over it), the
+/// consistency, the trials worse than their start (in the
 /// means), and the trials ok.
 pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
     let header = [
@@ -208,9 +209,11 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
         "action mm/s",
         "action median [p10, p90]",
         "action / best (mean; median)",
+        "action floor (mean / floor)",
         "sensor mm",
         "sensor median [p10, p90]",
         "sensor / best (mean; median)",
+        "sensor floor (mean / floor)",
         "consistency",
         "worse than start",
         "trials ok",
@@ -230,6 +233,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     get(&a.p90)
                 )
             };
+            let floor = |learned: f64, floor: f64| format!("{floor:.1} ({:.2}x)", learned / floor);
             vec![
                 c.scenario.clone(),
                 c.learner.clone(),
@@ -240,6 +244,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.action_ratio(),
                     c.action_ratio_of(&a.median)
                 ),
+                floor(m.action_rmse_mm_s, m.action_crb_rmse_mm_s),
                 format!("{:.1} +- {:.1}", m.sensor_rmse_mm, s.sensor_rmse_mm),
                 tail(|f| f.sensor_rmse_mm),
                 format!(
@@ -247,6 +252,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.sensor_ratio(),
                     c.sensor_ratio_of(&a.median)
                 ),
+                floor(m.sensor_rmse_mm, m.sensor_crb_rmse_mm),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
                 format!("{}/{}", a.worse_than_start.len(), a.ok()),
                 format!("{}/{}", a.ok(), a.trials),

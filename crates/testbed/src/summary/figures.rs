@@ -61,6 +61,26 @@ figures! {
     /// own frames, at the end, mm: the uncalibrated start's sensor model.
     #[serde(default = "nan")]
     sensor_start_rmse_mm,
+    /// The trial's information floor on the action metric (see
+    /// [`crate::floor`]): no unbiased learner of the learner's degrees does
+    /// better on this trial's data, mm/s.
+    #[serde(default = "nan")]
+    action_crb_rmse_mm_s,
+    /// The information floor on the sensor metric, mm.
+    #[serde(default = "nan")]
+    sensor_crb_rmse_mm,
+    /// The reading noise the floor found in the trial's ground truth, px.
+    #[serde(default = "nan")]
+    floor_reading_noise_px,
+    /// The process noise it found per frame of a steady walk, mm.
+    #[serde(default = "nan")]
+    floor_steady_noise_mm,
+    /// The process noise it found per frame while the gait changes over, mm.
+    #[serde(default = "nan")]
+    floor_changing_noise_mm,
+    /// The location's bob about its smooth walk it found, mm.
+    #[serde(default = "nan")]
+    floor_bob_mm,
     /// `| |k / b| - 1 |`.
     consistency,
     /// Simulated seconds per wall-clock second.
@@ -175,6 +195,12 @@ impl Figures {
             sensor_best_rmse_mm: best.1,
             action_a0_rmse_mm_s: best.2,
             sensor_start_rmse_mm: start.unwrap_or(f64::NAN),
+            action_crb_rmse_mm_s: outcome.floor.map_or(f64::NAN, |f| f.action_rmse_mm_s),
+            sensor_crb_rmse_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_rmse_mm),
+            floor_reading_noise_px: outcome.floor.map_or(f64::NAN, |f| f.noise.reading_px),
+            floor_steady_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.steady_mm),
+            floor_changing_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.changing_mm),
+            floor_bob_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.bob_mm),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
             ..Self::recovery_of(outcome, Self::localisation_of(outcome))

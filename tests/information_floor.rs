@@ -1,0 +1,268 @@
+//! The information floor against a Monte Carlo on the synthetic world: one
+//! path (the paper's behaviour), many draws of the reading noise. The bound
+//! is for a model that holds, so here the truth is in the model class: the
+//! synthetic robot's response and camera replaced by the best polynomials of
+//! the learner's degrees through them (a quartic A, a cubic S). The spread of
+//! the efficient estimator's errors, in each metric as the metrics compute
+//! it, matches the floor; and a learner does no better than the floor.
+
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+use scasm::{BatchMl, BatchMlConfig, CalibrationLearner, Event, EventError, Polynomial};
+use testbed::floor::{self, Floor, Noise, Sample};
+use testbed::metrics;
+use testbed::reference::Reference;
+use testbed::synthetic::{self, SyntheticTrialConfig};
+
+/// Records the commands a trial gives; learns nothing.
+#[derive(Default)]
+struct Recorder {
+    frames: Vec<(f64, f64, f64)>,
+}
+
+impl CalibrationLearner for Recorder {
+    fn name(&self) -> &str {
+        "recorder"
+    }
+    fn handle(&mut self, event: Event) -> Result<(), EventError> {
+        if let Event::Command { t_s, dt_s, command } = event {
+            self.frames.push((t_s, dt_s, command));
+        }
+        Ok(())
+    }
+    fn action_model(&self) -> Option<Polynomial> {
+        None
+    }
+    fn sensor_model(&self) -> Option<Polynomial> {
+        None
+    }
+    fn x_a(&self) -> Option<f64> {
+        None
+    }
+    fn x_s(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// The world: the synthetic world's models replaced by the best quartic A
+/// and cubic S through them, so that the truth is in the model class.
+struct World {
+    action: Polynomial,
+    sensor: Polynomial,
+    reference: Reference,
+}
+
+impl World {
+    fn new() -> Self {
+        let action = metrics::best_polynomial(&synthetic::measured_action(), 4).expect("A");
+        let by_obs: Vec<(f64, f64)> = synthetic::measured_sensor()
+            .iter()
+            .map(|&(d, o)| (o, d))
+            .collect();
+        let sensor = metrics::best_polynomial(&by_obs, 3).expect("S");
+        let mut world = Self {
+            action,
+            sensor,
+            reference: Reference {
+                action: Vec::new(),
+                sensor: Vec::new(),
+                changes: Vec::new(),
+            },
+        };
+        world.reference = Reference {
+            action: synthetic::test_commands()
+                .map(|c| (c, action.eval(c)))
+                .collect(),
+            sensor: synthetic::test_distances_mm()
+                .map(|d| (d, world.obs(d)))
+                .collect(),
+            changes: Vec::new(),
+        };
+        world
+    }
+
+    /// The noise-free reading at distance `x`: `S^-1(x)`, by bisection over
+    /// the readings S is monotone on.
+    fn obs(&self, x: f64) -> f64 {
+        let (mut lo, mut hi) = (12.0, 90.0);
+        assert!(
+            self.sensor.eval(lo) > x && self.sensor.eval(hi) < x,
+            "{x} mm out of range"
+        );
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if self.sensor.eval(mid) > x {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// The paper's behaviour's frames (the synthetic trial's commands) and
+    /// the true distance at each frame's end (readings unset).
+    fn path(&self) -> Vec<Sample> {
+        let config = SyntheticTrialConfig::default();
+        let mut recorder = Recorder::default();
+        synthetic::run_trial(&mut recorder, &config, 3).expect("trial");
+        let mut x = config.start_distance_mm;
+        recorder
+            .frames
+            .iter()
+            .map(|&(t_s, dt_s, command)| {
+                x -= self.action.eval(command) * dt_s;
+                Sample {
+                    t_s: t_s + dt_s,
+                    command,
+                    obs_px: None,
+                    x_true_mm: x,
+                }
+            })
+            .collect()
+    }
+
+    /// The path with a fresh draw of 1 px of reading noise.
+    fn draw(&self, path: &[Sample], rng: &mut rand_chacha::ChaCha8Rng) -> Vec<Sample> {
+        let noise = Normal::new(0.0, 1.0).expect("normal");
+        path.iter()
+            .map(|r| Sample {
+                obs_px: Some(self.obs(r.x_true_mm) + noise.sample(rng)),
+                ..*r
+            })
+            .collect()
+    }
+}
+
+/// The metrics' error vectors (after their best maps) of a pair of models.
+fn errors(action: &Polynomial, sensor: &Polynomial, reference: &Reference) -> (Vec<f64>, Vec<f64>) {
+    let a = metrics::action_error(action, &reference.action);
+    let s = metrics::sensor_error(sensor, &reference.sensor);
+    (
+        reference
+            .action
+            .iter()
+            .map(|&(c, v)| a.scale * action.eval(c) - v)
+            .collect(),
+        reference
+            .sensor
+            .iter()
+            .map(|&(d, o)| s.offset + s.scale * sensor.eval(o) - d)
+            .collect(),
+    )
+}
+
+/// Mean square spread of error vectors about their mean, per point, and the
+/// mean square error itself.
+fn spread_and_mean_square(draws: &[Vec<f64>]) -> (f64, f64) {
+    let (n, k) = (draws.len() as f64, draws[0].len());
+    let mean: Vec<f64> = (0..k)
+        .map(|i| draws.iter().map(|d| d[i]).sum::<f64>() / n)
+        .collect();
+    let spread = draws
+        .iter()
+        .map(|d| {
+            d.iter()
+                .zip(&mean)
+                .map(|(e, m)| (e - m).powi(2))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / (n * k as f64);
+    let square = draws
+        .iter()
+        .map(|d| d.iter().map(|e| e * e).sum::<f64>())
+        .sum::<f64>()
+        / (n * k as f64);
+    (spread, square)
+}
+
+#[test]
+fn the_efficient_estimators_spread_is_the_floor_and_no_learner_beats_it() {
+    let world = World::new();
+    let (degrees, reference) = ((4, 3), &world.reference);
+    let path = world.path();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(29);
+    // The noises as the truth shows them: 1 px of reading noise (and the
+    // error of interpolating this camera, no pinhole, between the 13
+    // distances), and no process noise beyond that of interpolating the
+    // stopwatch's curve. The bound takes the noises as drawn.
+    let measured = Floor::of(&world.draw(&path, &mut rng), reference, degrees).expect("floor");
+    assert!(
+        (measured.noise.reading_px - 1.0).abs() < 0.15,
+        "{:?}",
+        measured.noise
+    );
+    assert!(measured.noise.steady_mm < 0.05, "{:?}", measured.noise);
+    let noise = Noise {
+        reading_px: 1.0,
+        steady_mm: 0.01,
+        changing_mm: 0.01,
+        bob_mm: 0.0,
+    };
+    let bound =
+        Floor::with_noise(&world.draw(&path, &mut rng), reference, degrees, noise).expect("floor");
+    // In the class, the floor is its variance alone.
+    assert!(bound.action_rmse_mm_s - bound.action_sd_mm_s < 1e-6 * bound.action_rmse_mm_s);
+
+    let (mut action, mut sensor) = (Vec::new(), Vec::new());
+    for _ in 0..150 {
+        let rows = world.draw(&path, &mut rng);
+        let (a, s) = floor::maximum_likelihood(&rows, reference, degrees, noise).expect("ml");
+        let (ea, es) = errors(&a, &s, reference);
+        action.push(ea);
+        sensor.push(es);
+    }
+    let (action_spread, action_square) = spread_and_mean_square(&action);
+    let (sensor_spread, sensor_square) = spread_and_mean_square(&sensor);
+    let ratio_a = action_square.sqrt() / bound.action_rmse_mm_s;
+    let ratio_s = sensor_square.sqrt() / bound.sensor_rmse_mm;
+    eprintln!(
+        "floor: action {:.3} mm/s, sensor {:.3} mm; the ML estimator's RMS / floor: action \
+         {ratio_a:.3}, sensor {ratio_s:.3} (spread alone: {:.3}, {:.3})",
+        bound.action_rmse_mm_s,
+        bound.sensor_rmse_mm,
+        action_spread.sqrt() / bound.action_rmse_mm_s,
+        sensor_spread.sqrt() / bound.sensor_rmse_mm,
+    );
+    assert!((0.9..1.1).contains(&ratio_a), "action {ratio_a}");
+    assert!((0.9..1.1).contains(&ratio_s), "sensor {ratio_s}");
+
+    // A learner that knows neither the noises nor the truth does no better
+    // than the floor: batch-ml on more draws of the same path, fed as a
+    // trial feeds it.
+    let (mut action_sq, mut sensor_sq) = (0.0, 0.0);
+    let draws = 12;
+    for _ in 0..draws {
+        let rows = world.draw(&path, &mut rng);
+        let mut learner = BatchMl::new(BatchMlConfig::default().validate().expect("valid"));
+        let mut start = 0.0;
+        for r in &rows {
+            learner
+                .handle(Event::Command {
+                    t_s: start,
+                    dt_s: r.t_s - start,
+                    command: r.command,
+                })
+                .expect("command");
+            learner
+                .handle(Event::Reading {
+                    t_s: r.t_s,
+                    obs_px: r.obs_px.expect("reading"),
+                })
+                .expect("reading");
+            start = r.t_s;
+        }
+        let a = metrics::action_error(&learner.action_model().expect("A"), &reference.action);
+        let s = metrics::sensor_error(&learner.sensor_model().expect("S"), &reference.sensor);
+        action_sq += a.rmse * a.rmse / f64::from(draws);
+        sensor_sq += s.rmse * s.rmse / f64::from(draws);
+    }
+    eprintln!(
+        "batch-ml's RMS over {draws} draws: action {:.3} mm/s, sensor {:.3} mm",
+        action_sq.sqrt(),
+        sensor_sq.sqrt()
+    );
+    assert!(action_sq.sqrt() >= 0.9 * bound.action_rmse_mm_s);
+    assert!(sensor_sq.sqrt() >= 0.9 * bound.sensor_rmse_mm);
+}
