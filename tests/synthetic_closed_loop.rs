@@ -128,3 +128,42 @@ fn the_learners_beyond_the_paper_beat_scasm_where_the_truth_is_known() {
     assert!(batch.0 < scasm.0, "batch-ml's action model");
     assert!(batch.2 < 0.05, "batch-ml's consistency {:.3}", batch.2);
 }
+
+/// `batch-ml` past its window (a 450 s trial, window 150 s) learns the models
+/// solving the whole trial every time learns, within 3 %; and a window at
+/// least the trial's length is the whole-trial learner, bit for bit.
+#[test]
+fn batch_ml_windowed_learns_what_the_whole_trial_solve_learns() {
+    use scasm::{BatchMl, BatchMlConfig};
+    let run = |duration_s: f64, window_s: f64| {
+        let config = SyntheticTrialConfig {
+            duration_s,
+            ..Default::default()
+        };
+        let params = BatchMlConfig {
+            window_s,
+            ..BatchMlConfig::default()
+        }
+        .validate()
+        .expect("valid");
+        let mut learner = BatchMl::new(params);
+        let out = synthetic::run_trial(&mut learner, &config, 4).expect("valid events");
+        (
+            out.action_error.expect("A").rmse,
+            out.sensor_error.expect("S").rmse,
+        )
+    };
+    let (windowed, whole) = (run(450.0, 150.0), run(450.0, 1e9));
+    eprintln!("windowed {windowed:?}, whole {whole:?}");
+    assert!(
+        (windowed.0 / whole.0 - 1.0).abs() < 0.03,
+        "{windowed:?} vs {whole:?}"
+    );
+    assert!(
+        (windowed.1 / whole.1 - 1.0).abs() < 0.03,
+        "{windowed:?} vs {whole:?}"
+    );
+    let (short, short_whole) = (run(150.0, 150.0), run(150.0, 1e9));
+    assert_eq!(short.0.to_bits(), short_whole.0.to_bits());
+    assert_eq!(short.1.to_bits(), short_whole.1.to_bits());
+}

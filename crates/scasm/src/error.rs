@@ -80,6 +80,12 @@ pub enum ConfigError {
         /// The value given.
         value: f64,
     },
+    /// The batch learner's window must be positive.
+    #[error("batch-ml's window_s must be > 0, got {window_s}")]
+    Window {
+        /// The value given.
+        window_s: f64,
+    },
     /// A model given to a one-sided mode has a non-finite coefficient.
     #[error("the given {which} model has a non-finite coefficient")]
     GivenModel {

@@ -28,12 +28,26 @@ pub struct BatchMlConfig {
     /// How much larger (in standard deviation) the process noise is within
     /// half a second of a change of command, while the gait changes over.
     pub transient_noise: f64,
+    /// How far back (s) a solve moves the path: once a trial is longer, the
+    /// path before the window is held at the previous solution's and its
+    /// frames enter the solve as fixed sums, so that a solve costs what the
+    /// window does however long the trial (longer than the trial: the whole
+    /// trial, always).
+    #[cfg_attr(feature = "serde", serde(default = "default_window_s"))]
+    pub window_s: f64,
+}
+
+#[cfg(feature = "serde")]
+fn default_window_s() -> f64 {
+    BatchMlConfig::default().window_s
 }
 
 impl Default for BatchMlConfig {
     /// Chosen on the development seeds 100-114 of the default scenario (never
     /// the evaluation seeds): a process noise of an eighth of the typical
-    /// speed, four times that while the gait changes over.
+    /// speed, four times that while the gait changes over. The window, 150
+    /// s, is the default trial: a trial of that length or less is solved
+    /// whole.
     fn default() -> Self {
         Self {
             online: ScasmConfig::default(),
@@ -42,6 +56,7 @@ impl Default for BatchMlConfig {
             iterations: 15,
             process_noise: 0.125,
             transient_noise: 4.0,
+            window_s: 150.0,
         }
     }
 }
@@ -70,6 +85,11 @@ impl BatchMlConfig {
             if !(value.is_finite() && value > 0.0) {
                 return Err(ConfigError::BatchNoise { name, value });
             }
+        }
+        if self.window_s.is_nan() || self.window_s <= 0.0 {
+            return Err(ConfigError::Window {
+                window_s: self.window_s,
+            });
         }
         Ok(BatchMlParams(self))
     }

@@ -10,6 +10,7 @@ use std::vec::Vec;
 use crate::MAX_REGRESSORS;
 use crate::batch::config::BatchMlConfig;
 use crate::batch::frames::{FrameData, Solution, Start};
+use crate::batch::frozen::{Frozen, Held, Normalisation};
 use crate::batch::linalg::{Tridiagonal, solve_dense};
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
@@ -50,6 +51,8 @@ pub(crate) struct Problem<'a> {
     /// Per frame: 1 within [`TRANSIENT_S`] of a change of command (the gait is
     /// changing over), else 0. Each class has its own process noise.
     pub(crate) class: Vec<usize>,
+    /// The frames before the window of a windowed solve, path held.
+    pub(crate) frozen: Option<Frozen>,
 }
 
 impl Problem<'_> {
@@ -101,10 +104,28 @@ impl Problem<'_> {
         ]
     }
 
+    /// A's free coefficients (all but the linear), in order.
+    fn free_action(&self, m: &Models) -> Vec<f64> {
+        (0..=self.action_degree)
+            .filter(|&i| action_index(i).is_some())
+            .map(|i| m.a[i])
+            .collect()
+    }
+
+    /// The held frames' share of the cost.
+    fn frozen_cost(&self, m: &Models, process_precision: &Precisions) -> f64 {
+        self.frozen.as_ref().map_or(0.0, |f| {
+            let a = self.free_action(m);
+            process_precision[0] * f.process[0].cost(&a)
+                + process_precision[1] * f.process[1].cost(&a)
+                + self.reading_precision * f.reading.cost(&m.g[..f.reading.len()])
+        })
+    }
+
     /// Weighted sum of squares: process residuals at `process_precision`,
     /// reading residuals at the reading precision. `path[0]` is held.
     pub(crate) fn cost(&self, path: &[f64], m: &Models, process_precision: &Precisions) -> f64 {
-        let mut c = 0.0;
+        let mut c = self.frozen_cost(m, process_precision);
         for (j, f) in self.frames.iter().enumerate() {
             let w = self.weights[j];
             let r = path[j + 1] - path[j] - f.dt_s * self.velocity(m, j);
@@ -199,6 +220,25 @@ impl Problem<'_> {
                 }
             }
         }
+        if let Some(frozen) = &self.frozen {
+            // The held frames add to the model block and its right-hand side
+            // only: A's free coefficients are 0..da, g's da..q.
+            let a = self.free_action(m);
+            for (class, quadratic) in frozen.process.iter().enumerate() {
+                let w = process_precision[class];
+                add_quadratic(&mut model, &mut rhs_p, q, 0, w, quadratic, &a);
+            }
+            let g = &m.g[..frozen.reading.len()];
+            add_quadratic(
+                &mut model,
+                &mut rhs_p,
+                q,
+                da,
+                self.reading_precision,
+                &frozen.reading,
+                g,
+            );
+        }
         NormalEquations {
             diag,
             off,
@@ -284,6 +324,26 @@ impl Problem<'_> {
         let finite = new_path.iter().all(|v| v.is_finite())
             && new.a.iter().chain(&new.g).all(|v| v.is_finite());
         finite.then_some((new_path, new))
+    }
+}
+
+/// Adds `w` times a held block's quadratic form, over the parameters from
+/// `at` on (now at `x`), to the model block and its right-hand side.
+fn add_quadratic(
+    model: &mut [f64],
+    rhs: &mut [f64],
+    q: usize,
+    at: usize,
+    w: f64,
+    quadratic: &crate::batch::frozen::Quadratic,
+    x: &[f64],
+) {
+    let n = quadratic.len();
+    for (a, d) in quadratic.descent(x).iter().enumerate() {
+        rhs[at + a] += w * d;
+        for k in 0..n {
+            model[(at + a) * q + at + k] += w * quadratic.h[a * n + k];
+        }
     }
 }
 
@@ -374,10 +434,14 @@ pub(crate) fn units_map(path: &[f64], previous: &[f64]) -> Option<(f64, f64)> {
         .then_some((scale, offset))
 }
 
+/// Solves the fit from `start` over `all_frames`, the first `held` of them
+/// (a windowed solve's frames before its window) with their path held at
+/// `start`'s; `None` if there is too little to solve or the fit fails.
 pub(crate) fn solve(
     all_frames: &[FrameData],
     config: &BatchMlConfig,
     start: &Start,
+    held: usize,
 ) -> Option<Solved> {
     let oc = config.online;
     // Forgetting: frame j of n weighs gamma^(n-1-j); drop the negligible ones.
@@ -388,19 +452,20 @@ pub(crate) fn solve(
         usize::MAX
     };
     let first = all_frames.len().saturating_sub(keep);
-    let frames = &all_frames[first..];
-    let n = frames.len();
-    if frames.iter().filter(|f| f.obs_px.is_some()).count() < 4 * (oc.forward_degree + 2) {
+    let window = held.max(first);
+    let kept = &all_frames[first..];
+    let n = kept.len();
+    if kept.iter().filter(|f| f.obs_px.is_some()).count() < 4 * (oc.forward_degree + 2) {
         return None;
     }
-    let weights: Vec<f64> = (0..n)
+    let mut weights: Vec<f64> = (0..n)
         .map(|j| libm::pow(gamma, (n - 1 - j) as f64))
         .collect();
-    let mut path: Vec<f64> = start.path.get(first..)?.to_vec();
-    if path.len() != n + 1 {
+    let kept_path = start.path.get(first..)?;
+    if kept_path.len() != n + 1 || window >= all_frames.len() {
         return None;
     }
-    let (lo, hi) = path
+    let (lo, hi) = kept_path
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
             (lo.min(x), hi.max(x))
@@ -409,20 +474,28 @@ pub(crate) fn solve(
         return None;
     }
     let mut since_change = f64::INFINITY;
-    let class: Vec<usize> = frames
+    let mut class: Vec<usize> = kept
         .iter()
         .enumerate()
         .map(|(j, f)| {
-            let changed = j == 0 || f.command != frames[j - 1].command;
+            let changed = j == 0 || f.command != kept[j - 1].command;
             since_change = if changed {
                 0.0
             } else {
-                since_change + frames[j - 1].dt_s
+                since_change + kept[j - 1].dt_s
             };
             usize::from(since_change < TRANSIENT_S)
         })
         .collect();
-    let problem = Problem {
+    // The held frames, then the window's (whose path is free but its first
+    // location).
+    let split = window - first;
+    let (held_weights, held_class) = (weights[..split].to_vec(), class[..split].to_vec());
+    weights.drain(..split);
+    class.drain(..split);
+    let frames = &all_frames[window..];
+    let mut path: Vec<f64> = start.path[window..].to_vec();
+    let mut problem = Problem {
         frames,
         weights,
         action_degree: oc.action_degree,
@@ -432,6 +505,7 @@ pub(crate) fn solve(
         half_width: 0.5 * (hi - lo),
         reading_precision: 1.0 / reading_variance(frames)?,
         class,
+        frozen: None,
     };
     let mut m = Models {
         a: [0.0; MAX_REGRESSORS],
@@ -447,6 +521,23 @@ pub(crate) fn solve(
     {
         m.a[i] = c * p;
         p *= oc.command_scale;
+    }
+    if split > 0 {
+        let held = Held {
+            frames: &kept[..split],
+            path: &kept_path[..=split],
+            weights: &held_weights,
+            class: &held_class,
+        };
+        let normalisation = Normalisation {
+            action_degree: problem.action_degree,
+            forward_degree: problem.forward_degree,
+            command_scale: problem.command_scale,
+            centre: problem.centre,
+            half_width: problem.half_width,
+            a1: m.a[1],
+        };
+        problem.frozen = Some(Frozen::of(&held, &normalisation));
     }
     m.g = initial_forward_model(&problem, &path)?;
     let precision = problem.process_precisions(&m, config);
@@ -478,6 +569,12 @@ pub(crate) fn solve(
     // reading's location, so the data's own spread sets where S is fitted (as
     // in the paper's fit) and the reading noise biases nothing.
     let mut sensor_fit = PolynomialFit::new(oc.sensor_degree, gamma);
+    for (j, f) in kept[..split].iter().enumerate() {
+        if f.obs_px.is_some() {
+            let x = kept_path[j + 1];
+            sensor_fit.add(problem.g(&m, x).0, x);
+        }
+    }
     for (j, f) in frames.iter().enumerate() {
         if f.obs_px.is_some() {
             let x = path[j + 1];
@@ -490,7 +587,7 @@ pub(crate) fn solve(
     let cost = problem.cost(&path, &m, &problem.process_precisions(&m, config));
     // Dead reckoning carries on from the solved path's end.
     let x_a = *path.last()?;
-    let mut full_path = start.path[..first].to_vec();
+    let mut full_path = start.path[..window].to_vec();
     full_path.extend_from_slice(&path);
     Some(Solved {
         solution: Solution {
@@ -506,7 +603,8 @@ pub(crate) fn solve(
     })
 }
 
-/// g's least-squares coefficients with the path held (a linear fit).
+/// g's least-squares coefficients with the path held (a linear fit), held
+/// frames included.
 pub(crate) fn initial_forward_model(
     problem: &Problem<'_>,
     path: &[f64],
@@ -528,6 +626,14 @@ pub(crate) fn initial_forward_model(
             rhs[a] += w * phi[a] * obs;
             for b in 0..q {
                 normal[a * q + b] += w * phi[a] * phi[b];
+            }
+        }
+    }
+    if let Some(frozen) = &problem.frozen {
+        for a in 0..q {
+            rhs[a] += frozen.reading.c[a];
+            for b in 0..q {
+                normal[a * q + b] += frozen.reading.h[a * q + b];
             }
         }
     }
