@@ -8,7 +8,7 @@ use std::vec::Vec;
 
 use crate::MAX_REGRESSORS;
 use crate::batch::frames::FrameData;
-use crate::batch::solve::action_index;
+use crate::batch::problem::action_index;
 
 /// `sum w (b - j . x)^2` as `b2 - 2 x . c + x' h x`: the sum of squares of
 /// residuals linear in `x`.

@@ -58,6 +58,7 @@ mod config;
 mod frames;
 mod frozen;
 mod linalg;
+mod problem;
 mod solve;
 
 use std::boxed::Box;
