@@ -48,7 +48,7 @@ mod wls;
 pub const MAX_REGRESSORS: usize = 8;
 
 #[cfg(feature = "std")]
-pub use batch::{BATCH_ML, BatchMl, BatchMlConfig, BatchMlParams};
+pub use batch::{BATCH_ML, BATCH_ML_LAG, BatchMl, BatchMlConfig, BatchMlParams};
 pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};

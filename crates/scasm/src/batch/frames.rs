@@ -4,6 +4,7 @@
 
 use std::vec::Vec;
 
+use crate::batch::lag::INITIAL_TAU_S;
 use crate::learner::CalibrationLearner;
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
@@ -41,6 +42,14 @@ pub(crate) struct Solution {
 pub(crate) struct Start {
     pub(crate) path: Vec<f64>,
     pub(crate) action: Polynomial,
+    /// The response lag's time constant, s (used only where it is modelled).
+    #[cfg_attr(feature = "serde", serde(default = "initial_tau_s"))]
+    pub(crate) tau_s: f64,
+}
+
+#[cfg(feature = "serde")]
+fn initial_tau_s() -> f64 {
+    INITIAL_TAU_S
 }
 
 impl Start {
@@ -50,6 +59,7 @@ impl Start {
         Some(Self {
             path: online_path(frames),
             action: online.action_model()?,
+            tau_s: INITIAL_TAU_S,
         })
     }
 
@@ -94,7 +104,11 @@ impl Start {
         if !(slope.is_finite() && slope != 0.0) {
             return None;
         }
-        let mut start = Self { path, action };
+        let mut start = Self {
+            path,
+            action,
+            tau_s: INITIAL_TAU_S,
+        };
         start.rescale(1.0 / slope, 0.0);
         Some(start)
     }
@@ -118,6 +132,7 @@ impl Start {
         Self {
             path,
             action: self.action,
+            tau_s: self.tau_s,
         }
     }
 }

@@ -80,6 +80,9 @@ pub(crate) struct Held<'a> {
     pub(crate) path: &'a [f64],
     pub(crate) weights: &'a [f64],
     pub(crate) class: &'a [usize],
+    /// With the response lag: each frame's lagged displacement of each of
+    /// A's basis functions (see [`crate::batch::lag`]), else `dt u^i`.
+    pub(crate) lagged: Option<&'a [[f64; MAX_REGRESSORS]]>,
 }
 
 /// How the problem normalises commands and locations, and A's held linear
@@ -102,12 +105,14 @@ impl Frozen {
         for (k, f) in held.frames.iter().enumerate() {
             let w = held.weights[k];
             let u = f.command / n.command_scale;
-            // Process: b = x_{k+1} - x_k - dt a_1 u, j_i = dt u^i (i != 1).
-            let b = held.path[k + 1] - held.path[k] - f.dt_s * n.a1 * u;
+            // Process: b = x_{k+1} - x_k - dt a_1 u, j_i = dt u^i (i != 1);
+            // with the lag, the lagged displacements instead of dt u^i.
+            let basis = |i: usize, p: f64| held.lagged.map_or(f.dt_s * p, |l| l[k][i]);
+            let b = held.path[k + 1] - held.path[k] - n.a1 * basis(1, u);
             let mut p = 1.0;
             for i in 0..=da {
                 if let Some(a) = action_index(i) {
-                    j[a] = f.dt_s * p;
+                    j[a] = basis(i, p);
                 }
                 p *= u;
             }

@@ -37,6 +37,12 @@
 //! best takes its path onto that path), so that the learner's units do not
 //! jump at every solve: the likelihood is blind to them, a localiser is not.
 //!
+//! `batch-ml-lag` (`lag`) models the gait's response to a change of
+//! command: the speed relaxes from the old steady speed to `A(C)` with a
+//! time constant it learns with the rest (see `lag`), so that A is the
+//! steady-state response the stopwatch measures rather than an average that
+//! includes each change-over.
+//!
 //! Cost: each solve is O(N) in the frames N it moves, for a fixed number of
 //! iterations. Up to `window_s` (150 s) of trial a solve covers the whole
 //! trial: 15 solves of up to 3000 frames take about 0.3 s for a 150 s trial.
@@ -57,6 +63,7 @@
 mod config;
 mod frames;
 mod frozen;
+mod lag;
 mod linalg;
 mod problem;
 mod solve;
@@ -82,46 +89,65 @@ pub use config::{BatchMlConfig, BatchMlParams};
 /// of the whole trial when the whole is solved again.
 const REFRESH: f64 = 1.5;
 
+/// The shared settings the batch learners read (their online start's).
+const BATCH_SHARED: &[&str] = &[
+    "gamma",
+    "beta",
+    "t_start",
+    "sensor_degree",
+    "action_degree",
+    "sensor_window",
+    "forward_degree",
+];
+
 /// The batch learner as a host declares it (see [`crate::declaration`]): its
 /// own settings are [`BatchMlConfig`]'s, the shared ones its online start's.
 pub const BATCH_ML: Declaration = Declaration {
     name: "batch-ml",
     about: "maximum likelihood over the whole trial: path, A and the forward sensor model \
             jointly, started from scasm-eiv, its own last solution and the readings' pinhole path",
-    shared: &[
-        "gamma",
-        "beta",
-        "t_start",
-        "sensor_degree",
-        "action_degree",
-        "sensor_window",
-        "forward_degree",
-    ],
-    settings: batch_settings,
+    shared: BATCH_SHARED,
+    settings: || batch_settings(BatchMlConfig::default()),
     one_sided: false,
-    build: |c: &BuildContext| {
-        let own = &c.own;
-        let params = BatchMlConfig {
-            online: ScasmConfig {
-                sensor_fit: SensorFit::Corrected,
-                ..c.shared
-            },
-            gamma: own.get("gamma"),
-            solve_every_s: own.get("solve_every_s"),
-            iterations: own.count("iterations"),
-            process_noise: own.get("process_noise"),
-            transient_noise: own.get("transient_noise"),
-            window_s: own.get("window_s"),
-        }
-        .validate()
-        .map_err(|e| e.to_string())?;
-        Ok(Box::new(BatchMl::new(params)))
-    },
+    build: |c: &BuildContext| build(c, false),
 };
 
-/// [`BATCH_ML`]'s own settings, with [`BatchMlConfig::default`]'s values.
-fn batch_settings() -> Vec<Setting> {
-    let d = BatchMlConfig::default();
+/// `batch-ml` modelling the gait's response to a change of command: a
+/// first-order lag whose time constant it learns, so that its A is the
+/// steady-state response (see [`BatchMlConfig::lagged`]).
+pub const BATCH_ML_LAG: Declaration = Declaration {
+    name: "batch-ml-lag",
+    about: "batch-ml with the response to a change of command modelled: the speed relaxes \
+            to A(C) with a learned time constant, so A is the steady-state response",
+    shared: BATCH_SHARED,
+    settings: || batch_settings(BatchMlConfig::lagged()),
+    one_sided: false,
+    build: |c: &BuildContext| build(c, true),
+};
+
+/// A batch learner from a host's settings, the lag modelled or not.
+fn build(c: &BuildContext, lag: bool) -> Result<Box<dyn CalibrationLearner + Send>, String> {
+    let own = &c.own;
+    let params = BatchMlConfig {
+        online: ScasmConfig {
+            sensor_fit: SensorFit::Corrected,
+            ..c.shared
+        },
+        gamma: own.get("gamma"),
+        solve_every_s: own.get("solve_every_s"),
+        iterations: own.count("iterations"),
+        process_noise: own.get("process_noise"),
+        transient_noise: own.get("transient_noise"),
+        window_s: own.get("window_s"),
+        lag,
+    }
+    .validate()
+    .map_err(|e| e.to_string())?;
+    Ok(Box::new(BatchMl::new(params)))
+}
+
+/// A batch learner's own settings, with `d`'s values as defaults.
+fn batch_settings(d: BatchMlConfig) -> Vec<Setting> {
     let positive = (0.0, true, f64::INFINITY);
     vec![
         Setting::new(
@@ -216,6 +242,15 @@ impl BatchMl {
         &self.params
     }
 
+    /// The response lag's learned time constant, s, if the lag is modelled
+    /// and solved for.
+    pub fn lag_time_constant_s(&self) -> Option<f64> {
+        self.solved
+            .as_ref()
+            .filter(|_| self.params.config().lag)
+            .map(|s| s.tau_s)
+    }
+
     /// Solves the whole fit now, with every event so far (a host may call this
     /// at the end of a trial; the learner also solves every `solve_every_s`).
     pub fn solve_now(&mut self) {
@@ -296,7 +331,11 @@ impl BatchMl {
 
 impl CalibrationLearner for BatchMl {
     fn name(&self) -> &str {
-        "batch-ml"
+        if self.params.config().lag {
+            "batch-ml-lag"
+        } else {
+            "batch-ml"
+        }
     }
 
     fn handle(&mut self, event: Event) -> Result<(), EventError> {

@@ -10,6 +10,7 @@ use crate::MAX_REGRESSORS;
 use crate::batch::config::BatchMlConfig;
 use crate::batch::frames::FrameData;
 use crate::batch::frozen::{Frozen, Quadratic};
+use crate::batch::lag::{self, Regressors, TAU_RANGE_S};
 use crate::batch::linalg::{Tridiagonal, solve_dense};
 
 /// Frames whose weight falls below this are left out of a solve.
@@ -31,6 +32,8 @@ pub(crate) struct Models {
     pub(crate) a: [f64; MAX_REGRESSORS],
     /// g in normalised locations `z = (x - centre) / half_width`.
     pub(crate) g: [f64; MAX_REGRESSORS + 1],
+    /// `ln tau` of the response lag (see [`crate::batch::lag`]), if modelled.
+    pub(crate) log_tau: f64,
 }
 
 /// The problem's fixed data.
@@ -50,12 +53,39 @@ pub(crate) struct Problem<'a> {
     pub(crate) class: Vec<usize>,
     /// The frames before the window of a windowed solve, path held.
     pub(crate) frozen: Option<Frozen>,
+    /// If the response lag is modelled: every frame kept (the held ones and
+    /// the window's), through which the lag runs, and where the window starts.
+    pub(crate) lag: Option<(&'a [FrameData], usize)>,
 }
 
 impl Problem<'_> {
-    /// The free model parameters: a_0, a_2..a_d, then g_0..g_m.
+    /// The free model parameters: a_0, a_2..a_d, then g_0..g_m, then
+    /// `ln tau` if the lag is modelled.
     pub(crate) fn model_params(&self) -> usize {
-        self.action_degree + self.forward_degree + 1
+        self.action_degree + self.forward_degree + 1 + usize::from(self.lag.is_some())
+    }
+
+    /// The lag's regressors over the window at `m`'s `tau`, if modelled.
+    pub(crate) fn lag_regressors(&self, m: &Models) -> Option<Regressors> {
+        let (all, window) = self.lag?;
+        let mut r = lag::regressors(
+            all,
+            self.command_scale,
+            self.action_degree,
+            libm::exp(m.log_tau),
+        );
+        r.psi.drain(..window);
+        r.dpsi.drain(..window);
+        Some(r)
+    }
+
+    /// The displacement over frame `j` under `m`: `dt A(u)`, or with the lag
+    /// the lagged basis functions' (`lag` from [`Self::lag_regressors`]).
+    fn displacement(&self, m: &Models, j: usize, lag: Option<&Regressors>) -> f64 {
+        match lag {
+            None => self.frames[j].dt_s * self.velocity(m, j),
+            Some(r) => (0..=self.action_degree).map(|i| m.a[i] * r.psi[j][i]).sum(),
+        }
     }
 
     pub(crate) fn u(&self, j: usize) -> f64 {
@@ -123,9 +153,10 @@ impl Problem<'_> {
     /// reading residuals at the reading precision. `path[0]` is held.
     pub(crate) fn cost(&self, path: &[f64], m: &Models, process_precision: &Precisions) -> f64 {
         let mut c = self.frozen_cost(m, process_precision);
+        let lag = self.lag_regressors(m);
         for (j, f) in self.frames.iter().enumerate() {
             let w = self.weights[j];
-            let r = path[j + 1] - path[j] - f.dt_s * self.velocity(m, j);
+            let r = path[j + 1] - path[j] - self.displacement(m, j, lag.as_ref());
             c += w * process_precision[self.class[j]] * r * r;
             if let Some(obs) = f.obs_px {
                 let e = obs - self.g(m, path[j + 1]).0;
@@ -155,20 +186,28 @@ impl Problem<'_> {
         let mut rhs_x = vec![0.0; n];
         let mut rhs_p = vec![0.0; q];
         let mut jp = vec![0.0; q];
+        let lag = self.lag_regressors(m);
         for (j, f) in self.frames.iter().enumerate() {
             let w = self.weights[j] * process_precision[self.class[j]];
             // Process residual r = x_{j+1} - x_j - dt A(u): derivatives +1 on
             // path[j+1] (free index j), -1 on path[j] (free index j-1 if j > 0),
-            // -dt u^i on a_i.
-            let r = path[j + 1] - path[j] - f.dt_s * self.velocity(m, j);
+            // -dt u^i on a_i (with the lag: minus the lagged u^i's
+            // displacement, and on ln tau minus its derivative).
+            let r = path[j + 1] - path[j] - self.displacement(m, j, lag.as_ref());
             let u = self.u(j);
             jp.iter_mut().for_each(|v| *v = 0.0);
             let mut p = 1.0;
             for i in 0..=da {
                 if let Some(k) = action_index(i) {
-                    jp[k] = -f.dt_s * p;
+                    jp[k] = match &lag {
+                        None => -f.dt_s * p,
+                        Some(l) => -l.psi[j][i],
+                    };
                 }
                 p *= u;
+            }
+            if let Some(l) = &lag {
+                jp[q - 1] = -(0..=da).map(|i| m.a[i] * l.dpsi[j][i]).sum::<f64>();
             }
             // Accumulate J^T J and -J^T r for this row.
             diag[j] += w;
@@ -318,8 +357,13 @@ impl Problem<'_> {
         for i in 0..=self.forward_degree {
             new.g[i] += dp[da + i];
         }
+        if self.lag.is_some() {
+            let (lo, hi) = TAU_RANGE_S;
+            new.log_tau = (m.log_tau + dp[q - 1]).clamp(libm::log(lo), libm::log(hi));
+        }
         let finite = new_path.iter().all(|v| v.is_finite())
-            && new.a.iter().chain(&new.g).all(|v| v.is_finite());
+            && new.a.iter().chain(&new.g).all(|v| v.is_finite())
+            && new.log_tau.is_finite();
         finite.then_some((new_path, new))
     }
 }

@@ -8,6 +8,7 @@ use crate::MAX_REGRESSORS;
 use crate::batch::config::BatchMlConfig;
 use crate::batch::frames::{FrameData, Solution, Start};
 use crate::batch::frozen::{Frozen, Held, Normalisation};
+use crate::batch::lag;
 use crate::batch::linalg::solve_dense;
 use crate::batch::problem::{MIN_WEIGHT, Models, Problem, TRANSIENT_S, reading_variance};
 use crate::poly_fit::PolynomialFit;
@@ -129,10 +130,12 @@ pub(crate) fn solve(
         reading_precision: 1.0 / reading_variance(frames)?,
         class,
         frozen: None,
+        lag: config.lag.then_some((kept, split)),
     };
     let mut m = Models {
         a: [0.0; MAX_REGRESSORS],
         g: [0.0; MAX_REGRESSORS + 1],
+        log_tau: libm::log(start.tau_s),
     };
     let mut p = 1.0;
     for (i, c) in start
@@ -146,11 +149,17 @@ pub(crate) fn solve(
         p *= oc.command_scale;
     }
     if split > 0 {
+        // With the lag, the held frames' lagged regressors at the start's tau.
+        let lagged = config.lag.then(|| {
+            let r = lag::regressors(kept, oc.command_scale, oc.action_degree, start.tau_s);
+            r.psi[..split].to_vec()
+        });
         let held = Held {
             frames: &kept[..split],
             path: &kept_path[..=split],
             weights: &held_weights,
             class: &held_class,
+            lagged: lagged.as_deref(),
         };
         let normalisation = Normalisation {
             action_degree: problem.action_degree,
@@ -221,6 +230,7 @@ pub(crate) fn solve(
         start: Start {
             path: full_path,
             action,
+            tau_s: libm::exp(m.log_tau),
         },
         cost,
     })

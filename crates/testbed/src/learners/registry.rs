@@ -16,6 +16,7 @@ pub const LEARNERS: &[Declaration] = &[
     scasm::SCASM,
     scasm::SCASM_EIV,
     scasm::BATCH_ML,
+    scasm::BATCH_ML_LAG,
 ];
 
 /// The Rust learners' names, in the order above.
