@@ -1,6 +1,9 @@
 //! A deterministic event stream for the learner's own tests: a point robot under
 //! a made-up nonlinear action model, seen by an ideal pinhole with pseudo-noise.
 
+// Each test file uses what it needs of this module.
+#![allow(dead_code)]
+
 use scasm::{CalibrationLearner, Event};
 
 pub const DT_S: f64 = 0.05;
