@@ -13,7 +13,7 @@ run() { echo "+ $*"; "$@"; }
 mkdir -p "$out"
 # The default learner live, every other learner on the same recordings.
 run target/release/examples/train --seeds "$seeds" --out "$out/train" | tee "$out/train.log"
-for learner in scasm-paper scasm-eiv batch-ml; do
+for learner in scasm-paper scasm-eiv batch-ml batch-ml-lag; do
     run target/release/examples/replay "$out/train" --learner "$learner" --out "$out/replay-$learner" \
         | tee "$out/replay-$learner.log"
 done
