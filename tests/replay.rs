@@ -95,6 +95,7 @@ fn every_named_learner_learns_both_models_from_a_recording() {
         ("scasm", 17.0, 77.6),
         ("scasm-eiv", 17.5, 66.1),
         ("batch-ml", 9.6, 36.7),
+        ("batch-ml-lag", 7.1, 34.1),
     ];
     assert_eq!(
         learners::names().collect::<Vec<_>>(),
