@@ -60,44 +60,20 @@ impl World {
             .map(|&(d, o)| (o, d))
             .collect();
         let sensor = metrics::best_polynomial(&by_obs, 3).expect("S");
-        let mut world = Self {
-            action,
-            sensor,
-            reference: Reference {
-                action: Vec::new(),
-                sensor: Vec::new(),
-                changes: Vec::new(),
-            },
-        };
-        world.reference = Reference {
+        let reference = Reference {
             action: synthetic::test_commands()
                 .map(|c| (c, action.eval(c)))
                 .collect(),
             sensor: synthetic::test_distances_mm()
-                .map(|d| (d, world.obs(d)))
+                .map(|d| (d, reading(&sensor, d)))
                 .collect(),
             changes: Vec::new(),
         };
-        world
-    }
-
-    /// The noise-free reading at distance `x`: `S^-1(x)`, by bisection over
-    /// the readings S is monotone on.
-    fn obs(&self, x: f64) -> f64 {
-        let (mut lo, mut hi) = (12.0, 90.0);
-        assert!(
-            self.sensor.eval(lo) > x && self.sensor.eval(hi) < x,
-            "{x} mm out of range"
-        );
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if self.sensor.eval(mid) > x {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+        Self {
+            action,
+            sensor,
+            reference,
         }
-        0.5 * (lo + hi)
     }
 
     /// The paper's behaviour's frames (the synthetic trial's commands) and
@@ -127,11 +103,30 @@ impl World {
         let noise = Normal::new(0.0, 1.0).expect("normal");
         path.iter()
             .map(|r| Sample {
-                obs_px: Some(self.obs(r.x_true_mm) + noise.sample(rng)),
+                obs_px: Some(reading(&self.sensor, r.x_true_mm) + noise.sample(rng)),
                 ..*r
             })
             .collect()
     }
+}
+
+/// The noise-free reading at distance `x` of a camera whose sensor model is
+/// `sensor`: `S^-1(x)`, by bisection over the readings S is monotone on.
+fn reading(sensor: &Polynomial, x: f64) -> f64 {
+    let (mut lo, mut hi) = (12.0, 90.0);
+    assert!(
+        sensor.eval(lo) > x && sensor.eval(hi) < x,
+        "{x} mm out of range"
+    );
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if sensor.eval(mid) > x {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// The metrics' error vectors (after their best maps) of a pair of models.

@@ -15,12 +15,7 @@ fn lagged_events() -> Vec<Event> {
     let dt = common::DT_S;
     let (mut x, mut v, mut dir, mut out) = (2400.0_f64, 0.0_f64, 1.0_f64, Vec::new());
     let mut lcg: u64 = 777;
-    let mut next = || {
-        lcg = lcg
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (lcg >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = || common::uniform(&mut lcg);
     let mut command = 0.0;
     for k in 0..3000 {
         if k % 40 == 0 {

@@ -591,8 +591,8 @@ fn metric_variance(basis: &DMatrix<f64>, gauge: &[Vec<f64>], covariance: &DMatri
     (&m * covariance * m.transpose()).trace() / n as f64
 }
 
-/// Points of a measured curve, sorted, for piecewise-linear interpolation
-/// (extrapolated from the end segments).
+/// Points of a measured curve, sorted and without repeated abscissae, for
+/// [`metrics::interpolate`] (extrapolated from the end segments).
 struct Table(Vec<(f64, f64)>);
 
 impl Table {
@@ -604,15 +604,6 @@ impl Table {
     }
 
     fn at(&self, x: f64) -> f64 {
-        let p = &self.0;
-        match p.len() {
-            0 => f64::NAN,
-            1 => p[0].1,
-            n => {
-                let i = p.partition_point(|q| q.0 < x).clamp(1, n - 1);
-                let ((x0, y0), (x1, y1)) = (p[i - 1], p[i]);
-                y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-            }
-        }
+        metrics::interpolate(&self.0, x).map_or(f64::NAN, |(y, _)| y)
     }
 }

@@ -15,6 +15,8 @@
 
 use scasm::Polynomial;
 
+use crate::metrics::interpolate;
+
 /// What the filter needs of a pair of models.
 pub trait Models {
     /// The velocity for a command, in location units per second.
@@ -67,21 +69,6 @@ impl Tabulated {
         sensor.sort_by(|a, b| a.0.total_cmp(&b.0));
         Self { action, sensor }
     }
-}
-
-/// Linear interpolation in a table sorted by `x` (at least two points): the
-/// value and the slope of the segment used; beyond the ends, along the end
-/// segments.
-fn interpolate(table: &[(f64, f64)], x: f64) -> Option<(f64, f64)> {
-    if table.len() < 2 {
-        return None;
-    }
-    let k = table
-        .partition_point(|p| p.0 <= x)
-        .clamp(1, table.len() - 1);
-    let ((x0, y0), (x1, y1)) = (table[k - 1], table[k]);
-    let slope = (y1 - y0) / (x1 - x0);
-    Some((y0 + slope * (x - x0), slope)).filter(|(y, s)| y.is_finite() && s.is_finite())
 }
 
 impl Models for Tabulated {

@@ -118,6 +118,21 @@ pub fn best_polynomial_rmse(points: &[(f64, f64)], degree: usize) -> Option<f64>
     Some(rms(points.iter().map(|&(x, y)| p.eval(x) - y)))
 }
 
+/// Linear interpolation in a table sorted by `x` (at least two points): the
+/// value and the slope of the segment used; beyond the ends, along the end
+/// segments.
+pub fn interpolate(table: &[(f64, f64)], x: f64) -> Option<(f64, f64)> {
+    if table.len() < 2 {
+        return None;
+    }
+    let k = table
+        .partition_point(|p| p.0 <= x)
+        .clamp(1, table.len() - 1);
+    let ((x0, y0), (x1, y1)) = (table[k - 1], table[k]);
+    let slope = (y1 - y0) / (x1 - x0);
+    Some((y0 + slope * (x - x0), slope)).filter(|(y, s)| y.is_finite() && s.is_finite())
+}
+
 fn rms(residuals: impl Iterator<Item = f64>) -> f64 {
     let (sum, n) = residuals.fold((0.0, 0usize), |(s, n), r| (s + r * r, n + 1));
     if n == 0 { 0.0 } else { (sum / n as f64).sqrt() }

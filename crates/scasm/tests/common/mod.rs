@@ -14,6 +14,14 @@ pub fn true_velocity(c: f64) -> f64 {
     300.0 * u + 40.0 * u * u - 30.0 * u * u * u
 }
 
+/// The next number of a linear congruential stream, uniform in [0, 1).
+pub fn uniform(state: &mut u64) -> f64 {
+    *state = state
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
+    (*state >> 11) as f64 / (1u64 << 53) as f64
+}
+
 /// The events of frames `from..to`: a command over each frame, then a reading.
 /// Distance moves between 1.2 and 3.6 m with commands changing every 3 s.
 pub fn events(from: u64, to: u64) -> Vec<Event> {
@@ -22,17 +30,11 @@ pub fn events(from: u64, to: u64) -> Vec<Event> {
     let mut command = 0.0;
     for k in 0..to {
         if k % 60 == 0 {
-            lcg = lcg
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            command = dir * ((lcg >> 11) as f64 / (1u64 << 53) as f64) * 300.0;
+            command = dir * uniform(&mut lcg) * 300.0;
         }
         let t_s = k as f64 * DT_S;
         x -= true_velocity(command) * DT_S;
-        lcg = lcg
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        let noise = ((lcg >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0;
+        let noise = (uniform(&mut lcg) - 0.5) * 2.0;
         let obs_px = 76_800.0 / x + noise;
         if (dir > 0.0 && x < 1200.0) || (dir < 0.0 && x > 3600.0) {
             dir = -dir;
