@@ -26,7 +26,7 @@ fn main() -> Result<()> {
     let scenario = args.scenario.scenario()?;
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
-    let commands = measure::paper_commands(scenario.scale());
+    let commands = scenario.scale().paper_commands();
     let stopwatch = scenario.stopwatch();
     let measured = measure::measure_action(description, sim_config, &stopwatch, &commands)?;
     let wall = started.elapsed().as_secs_f64();

@@ -11,7 +11,7 @@ use testbed::{measure, metrics};
 fn check(robot: &str) {
     let scenario = Scenario::from_settings(None, None, &[format!("robot.file={robot}")])
         .expect("a shipped robot");
-    let commands = measure::paper_commands(scenario.scale());
+    let commands = scenario.scale().paper_commands();
     let measured = measure::measure_action(
         &scenario.description,
         scenario.sim,

@@ -12,6 +12,7 @@
 #![warn(missing_docs)]
 
 pub mod beacon;
+pub mod cadence;
 pub mod camera;
 pub mod config;
 pub mod description;

@@ -85,6 +85,11 @@ struct CameraToml {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GaitOverrides {
+    /// The scaled gait's periods and step lengths times this
+    /// ([`crate::cadence::quicken`]) before any value below replaces them;
+    /// absent, and with no `period_s` given, the walk test finds it
+    /// ([`crate::cadence::fit`]).
+    pub cadence: Option<f64>,
     /// Eq. 1's `v_max`, mm/s (> 0).
     pub v_max_mm_s: Option<f64>,
     /// Eq. 1's `v_min`, mm/s (< 0).
@@ -130,7 +135,7 @@ impl ParamOverrides {
 impl GaitOverrides {
     /// `table` with these values in place.
     pub fn apply(&self, table: GaitTable) -> GaitTable {
-        let mut t = table;
+        let mut t = crate::cadence::quicken(table, self.cadence.unwrap_or(1.0));
         t.v_max_mm_s = self.v_max_mm_s.unwrap_or(t.v_max_mm_s);
         t.v_min_mm_s = self.v_min_mm_s.unwrap_or(t.v_min_mm_s);
         self.idle.apply(&mut t.idle);
@@ -231,8 +236,11 @@ pub struct RobotFile {
     pub urdf_text: String,
     /// The checked robot.
     pub description: RobotDescription,
-    /// The file's `[gait]`.
+    /// The file's `[gait]`, with the cadence the walk test found if the file
+    /// gave none.
     pub gait: GaitOverrides,
+    /// What the walk test found, if it ran (see [`crate::cadence`]).
+    pub cadence_fit: Option<crate::cadence::Cadence>,
 }
 
 impl RobotFile {
@@ -320,7 +328,18 @@ impl RobotFile {
             rpy = map.camera.rpy,
         );
         let file = parse(&label, &text)?;
-        Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)
+        let mut robot = Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)?;
+        if let Some(fit) = &robot.cadence_fit {
+            robot.text.push_str(&format!(
+                "\n[gait]\n# Found by the walk test (quadsim::cadence).\n{}cadence = {:?}\n",
+                fit.rejected
+                    .iter()
+                    .map(|(f, why)| format!("# cadence {f:?}: {why}\n"))
+                    .collect::<String>(),
+                fit.factor
+            ));
+        }
+        Ok(robot)
     }
 
     fn build(
@@ -356,8 +375,55 @@ impl RobotFile {
             urdf_text,
             description,
             gait: file.gait,
+            cadence_fit: None,
         }
-        .checked(label)
+        .checked(label)?
+        .with_cadence(label)
+    }
+
+    /// Whether the walk test chooses this robot's cadence: its file gives
+    /// neither a cadence nor any period, and the robot is not the ERS-7's
+    /// size and mass (whose gait the defaults are).
+    fn needs_cadence_fit(&self) -> bool {
+        let g = &self.gait;
+        let periods = [g.idle, g.fast_forwards, g.fast_backwards].map(|p| p.period_s);
+        g.cadence.is_none()
+            && periods.iter().all(Option::is_none)
+            && crate::RobotScale::of(&self.description) != crate::RobotScale::ONE
+    }
+
+    /// `self` with the cadence the walk test finds, if it chooses it
+    /// ([`Self::needs_cadence_fit`]); an error listing every cadence's
+    /// failure if none walks.
+    fn with_cadence(mut self, label: &str) -> Result<Self, RobotError> {
+        if !self.needs_cadence_fit() {
+            return Ok(self);
+        }
+        let bad = |reason: String| RobotError::RobotFile {
+            file: label.to_string(),
+            reason,
+        };
+        let fitted = crate::cadence::fit(&self.description, |factor| {
+            let mut file = self.clone();
+            file.gait.cadence = Some(factor);
+            file.sim_config()
+        })
+        .map_err(|e| bad(format!("the walk test could not run: {e}")))?;
+        match fitted {
+            Ok(cadence) => {
+                self.gait.cadence = Some(cadence.factor);
+                self.cadence_fit = Some(cadence);
+                self.checked(label)
+            }
+            Err(failures) => Err(bad(format!(
+                "the gait scaled from the ERS-7's does not walk this robot at any cadence tried                  ({}); give its own gait (periods and step lengths) under [gait] in a robot file",
+                failures
+                    .iter()
+                    .map(|(f, why)| format!("cadence {f}: {why}"))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            ))),
+        }
     }
 
     /// The robot's settings: the defaults scaled to its size
@@ -374,6 +440,11 @@ impl RobotFile {
             file: label.to_string(),
             reason,
         };
+        if let Some(c) = self.gait.cadence {
+            if !(c > 0.0 && c <= 2.0) {
+                return Err(bad(format!("gait.cadence must be in (0, 2], got {c}")));
+            }
+        }
         let config = self.sim_config();
         check_gait(&config.walk.gait)
             .map_err(|(key, reason)| bad(format!("gait.{key} {reason}")))?;

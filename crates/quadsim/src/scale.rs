@@ -64,6 +64,14 @@ impl RobotScale {
         self.length.sqrt()
     }
 
+    /// The paper's 31 commands, every multiple of 20 in [-300, 300] mm/s, at
+    /// this scale (`speed()` times these).
+    pub fn paper_commands(&self) -> Vec<f64> {
+        (-15..=15)
+            .map(|k| 20.0 * f64::from(k) * self.speed())
+            .collect()
+    }
+
     /// `base` (settings chosen for the ERS-7) scaled to this robot.
     pub fn apply(&self, base: SimConfig) -> SimConfig {
         let (s, t, v, mu) = (self.length, self.time(), self.speed(), self.mass);

@@ -405,6 +405,7 @@ impl QuadrupedSim {
                 &pose,
                 &self.config.beacon,
                 self.band,
+                self.camera_parent,
             );
             self.heading.observe_bearing(frame.bearing_rad);
             self.latest_frame = Some(frame);
@@ -463,6 +464,7 @@ impl QuadrupedSim {
             &self.config.camera.intrinsics,
             &self.config.beacon,
             self.band,
+            Some(self.camera_parent),
         )
         .ok()
     }

@@ -4,6 +4,7 @@
 
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
+use rapier3d::dynamics::RigidBodyHandle;
 use rapier3d::geometry::{ColliderHandle, Ray};
 use rapier3d::math::{Pose, Real, Vector};
 use rapier3d::pipeline::{PhysicsWorld, QueryFilter};
@@ -90,13 +91,17 @@ pub struct Frame {
 
 /// Finds the band's pixels in the image of a camera at `camera_pose`: a pixel
 /// shows the band when its ray meets the band (exactly, analytically) and nothing
-/// else in the physics world first.
+/// else in the physics world first. The body the camera is mounted on,
+/// `own_body`, hides nothing: its lens looks out of it (a camera mounted on
+/// its link's surface would otherwise see the inside of the link, as the
+/// rounding of each step's pose puts it a hair inside or out).
 pub fn find_band(
     world: &PhysicsWorld,
     camera_pose: &Pose,
     intrinsics: &CameraIntrinsics,
     beacon: &BeaconConfig,
     band: ColliderHandle,
+    own_body: Option<RigidBodyHandle>,
 ) -> Result<BandBlob, NoReading> {
     // The band's silhouette lies within the projections of its rims: none of
     // them in the image is out of view, some of them is cut by the border.
@@ -131,7 +136,7 @@ pub fn find_band(
     let (r0, r1) = (clamp(lo[1].floor() - 1.0, h), clamp(hi[1].ceil() + 1.0, h));
 
     let beacon_body = world.colliders[band].parent();
-    let may_occlude = anything_between(world, camera_pose, beacon, beacon_body);
+    let may_occlude = anything_between(world, camera_pose, beacon, [beacon_body, own_body]);
     let o = camera_pose.translation;
     let origin = [o.x, o.y, o.z].map(f64::from);
     let max_toi: Real = 1e3;
@@ -151,7 +156,11 @@ pub fn find_band(
             }
             // Only something other than the beacon itself (its pole's top face
             // coincides with the band's bottom face) can hide the band.
-            let first = world.cast_ray(&Ray::new(o, d), max_toi, true, QueryFilter::default());
+            let filter = match own_body {
+                Some(body) => QueryFilter::default().exclude_rigid_body(body),
+                None => QueryFilter::default(),
+            };
+            let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
             match first {
                 Some((hit, t))
                     if world.colliders[hit].parent() != beacon_body
@@ -192,7 +201,7 @@ fn anything_between(
     world: &PhysicsWorld,
     camera_pose: &Pose,
     beacon: &BeaconConfig,
-    beacon_body: Option<rapier3d::dynamics::RigidBodyHandle>,
+    ignored: [Option<RigidBodyHandle>; 2],
 ) -> bool {
     use rapier3d::parry::query::intersection_test;
     use rapier3d::parry::shape::ConvexPolyhedron;
@@ -214,7 +223,7 @@ fn anything_between(
     world
         .colliders
         .iter()
-        .filter(|(_, c)| c.parent() != beacon_body)
+        .filter(|(_, c)| c.parent().is_none_or(|p| !ignored.contains(&Some(p))))
         .any(|(_, c)| {
             intersection_test(&identity, &hull, c.position(), c.shape())
                 .map_or(true, |i| i.intersecting)
@@ -266,9 +275,10 @@ impl Camera {
         camera_pose: &Pose,
         beacon: &BeaconConfig,
         band: ColliderHandle,
+        own_body: RigidBodyHandle,
     ) -> Frame {
         let intr = &self.config.intrinsics;
-        match find_band(world, camera_pose, intr, beacon, band) {
+        match find_band(world, camera_pose, intr, beacon, band, Some(own_body)) {
             Ok(blob) => {
                 let obs = blob.extent_px() + self.noise.sample(&mut self.rng);
                 Frame {

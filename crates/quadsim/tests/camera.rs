@@ -104,7 +104,7 @@ fn bearing_is_positive_for_a_beacon_on_the_left() {
     let band = beacon.insert(&mut world);
     world.step();
     let camera = Pose::translation(0.0, 0.0, 0.2);
-    let blob = vision::find_band(&world, &camera, &CameraIntrinsics::default(), &beacon, band)
+    let blob = vision::find_band(&world, &camera, &CameraIntrinsics::default(), &beacon, band, None)
         .expect("seen");
     let bearing = CameraIntrinsics::default().bearing_of_column(blob.mean_column());
     assert!(
@@ -136,7 +136,7 @@ fn no_reading_out_of_view_behind_cut_or_occluded() {
             Vector::new(x as f32, y as f32, 0.2),
             rapier3d::math::Rotation::from_rotation_z(yaw as f32),
         );
-        vision::find_band(&world, &pose, &intr, &beacon, band)
+        vision::find_band(&world, &pose, &intr, &beacon, band, None)
     };
     // Facing away.
     assert_eq!(

@@ -293,14 +293,6 @@ pub fn hold_command(measured: &[MeasuredVelocity]) -> f64 {
     crossing.unwrap_or(0.0)
 }
 
-/// The paper's 31 commands, every multiple of 20 in [-300, 300], at the
-/// robot's scale (`scale.speed()` times these).
-pub fn paper_commands(scale: RobotScale) -> Vec<f64> {
-    (-15..=15)
-        .map(|k| 20.0 * f64::from(k) * scale.speed())
-        .collect()
-}
-
 /// Measures every command, in parallel, in the order given.
 pub fn measure_action(
     description: &RobotDescription,

@@ -18,8 +18,9 @@ pub const MEASURE_READINGS: usize = 100;
 
 /// Bumped whenever a protocol or the physics changes in a way the settings do
 /// not show, so that cached references measured the old way are measured again
-/// (3: the patched rapier3d's mass matrix).
-const PROTOCOL_VERSION: u32 = 3;
+/// (3: the patched rapier3d's mass matrix; 4: the camera's own link hides
+/// nothing, and a scaled robot's cadence is found by the walk test).
+const PROTOCOL_VERSION: u32 = 4;
 
 /// The measured models with their spreads, as the protocols give them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -204,7 +205,7 @@ fn measured_world(
         &scenario.description,
         scenario.sim,
         &scenario.stopwatch(),
-        &measure::paper_commands(scale),
+        &scale.paper_commands(),
     )?;
     let sensor = measure::measure_sensor(
         &scenario.description,
