@@ -11,7 +11,13 @@ fn main() -> Result<()> {
         if let Some(f) = sim.take_frame() {
             if (f.t_s * 20.0).round() as i64 % 5 == 0 {
                 let c = sim.camera_pose();
-                println!("{:.2} d {:.3} obs {:?} cam z {:.3}", f.t_s, sim.distance_along_line_m(), f.obs_px, c.translation.z);
+                println!(
+                    "{:.2} d {:.3} obs {:?} cam z {:.3}",
+                    f.t_s,
+                    sim.distance_along_line_m(),
+                    f.obs_px,
+                    c.translation.z
+                );
             }
         }
     }

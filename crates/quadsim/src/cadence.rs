@@ -124,9 +124,8 @@ pub fn check_walk(
             let handles: Vec<_> = batch
                 .iter()
                 .map(|&command_mm_s| {
-                    scope.spawn(move || {
-                        walk(description, config, command_mm_s, settle_s, measure_s)
-                    })
+                    scope
+                        .spawn(move || walk(description, config, command_mm_s, settle_s, measure_s))
                 })
                 .collect();
             handles

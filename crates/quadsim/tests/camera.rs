@@ -104,8 +104,15 @@ fn bearing_is_positive_for_a_beacon_on_the_left() {
     let band = beacon.insert(&mut world);
     world.step();
     let camera = Pose::translation(0.0, 0.0, 0.2);
-    let blob = vision::find_band(&world, &camera, &CameraIntrinsics::default(), &beacon, band, None)
-        .expect("seen");
+    let blob = vision::find_band(
+        &world,
+        &camera,
+        &CameraIntrinsics::default(),
+        &beacon,
+        band,
+        None,
+    )
+    .expect("seen");
     let bearing = CameraIntrinsics::default().bearing_of_column(blob.mean_column());
     assert!(
         (bearing - (0.3f64).atan2(2.0)).abs() < 0.02,
@@ -195,4 +202,33 @@ fn same_seed_same_readings_other_seed_other_noise() {
     };
     assert_eq!(run(1), run(1));
     assert_ne!(run(1), run(2));
+}
+
+#[test]
+fn a_camera_on_its_links_face_is_not_hidden_by_the_link() {
+    // The camera on the middle of the torso box's front face (x = 0.10), as a
+    // bare URDF's camera is mounted: the lens looks out of the link, so the
+    // link never hides the band, whichever side of the face each step's
+    // rounding puts the lens.
+    let urdf = urdf_rs::read_from_string(ERS7_URDF).expect("urdf");
+    let mut map = quadsim::description::RobotMap::conventional(&urdf).expect("map");
+    map.camera = quadsim::description::CameraMount {
+        parent: "torso".into(),
+        xyz: [0.10, 0.0, 0.0],
+        rpy: [0.0; 3],
+    };
+    let d = RobotDescription::from_urdf(urdf, &map).expect("mounted");
+    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    sim.set_command(300.0).expect("finite");
+    let mut frames = Vec::new();
+    while sim.time_s() < 6.0 {
+        sim.step();
+        frames.extend(sim.take_frame());
+    }
+    let hidden = frames
+        .iter()
+        .filter(|f| f.obs_px == Err(NoReading::Occluded))
+        .count();
+    assert_eq!(hidden, 0, "{hidden} of {} frames hidden", frames.len());
+    assert!(frames.iter().all(|f| f.obs_px.is_ok()), "{frames:?}");
 }
