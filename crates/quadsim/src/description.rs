@@ -78,13 +78,24 @@ pub struct LegDescription {
     pub name: &'static str,
     /// The abduction joint's position in the torso frame, m.
     pub hip_in_torso_m: [f64; 3],
-    /// The hip joint's sideways offset from the abduction joint, m (positive:
-    /// left; 0 when the hip sits on the abduction axis).
+    /// The leg's plane's sideways offset from the abduction joint, m
+    /// (positive: left; 0 when the hip, knee and foot sit on the abduction
+    /// axis's plane): the hip's, knee's and foot's offsets along y summed.
     pub hip_offset_m: f64,
-    /// Segment lengths (the knee direction is the gait's choice).
+    /// The hip joint's position from the abduction joint, forwards and up,
+    /// m (0 and 0 when it sits on the abduction axis or beside it).
+    pub hip_at_m: [f64; 2],
+    /// Hip to knee in the leg's plane, m.
     pub thigh_m: f64,
-    /// Knee to foot centre, m.
+    /// Knee to foot centre in the leg's plane, m.
     pub shank_m: f64,
+    /// The thigh's direction at the zero pose, from straight down, positive
+    /// backwards (a rotation about +y), rad: 0 for a thigh that hangs down,
+    /// pi/2 for one that points backwards.
+    pub thigh_zero_rad: f64,
+    /// The shank's angle to the thigh's line at the zero pose (about +y),
+    /// rad: 0 for a straight leg.
+    pub knee_zero_rad: f64,
     /// Radius of the spherical foot, m.
     pub foot_radius_m: f64,
     /// Joint names: abduction, hip, knee.
@@ -110,6 +121,9 @@ impl LegDescription {
             shank_m: self.shank_m,
             hip_offset_m: self.hip_offset_m,
             knee_sign,
+            hip_at_m: self.hip_at_m,
+            thigh_zero_rad: self.thigh_zero_rad,
+            knee_zero_rad: self.knee_zero_rad,
         }
     }
 
@@ -127,14 +141,18 @@ impl LegDescription {
         self.hip_in_torso_m[0] > 0.0
     }
 
-    /// Which way the knee bends: the way its URDF range allows if the range
-    /// lies on one side of straight (a knee that is never straight), else
-    /// front knees like elbows (-1) and hind knees like knees (+1).
+    /// Which way the knee bends from the straight leg: the way its URDF
+    /// range allows if the range lies on one side of straight (a knee that
+    /// is never straight), or mostly on one side (less than half as much
+    /// room, up to half a turn, on the other), else front knees like elbows
+    /// (-1) and hind knees like knees (+1).
     pub fn knee_sign(&self) -> f64 {
-        let [lower, upper] = self.limits_rad[2];
-        if upper <= 0.0 {
+        let [lower, upper] = self.limits_rad[2].map(|v| v + self.knee_zero_rad);
+        let half_turn = std::f64::consts::PI;
+        let (forwards, backwards) = (upper.clamp(0.0, half_turn), (-lower).clamp(0.0, half_turn));
+        if forwards < 0.5 * backwards {
             -1.0
-        } else if lower >= 0.0 {
+        } else if backwards < 0.5 * forwards {
             1.0
         } else if self.is_front() {
             -1.0
@@ -372,6 +390,10 @@ fn check_leg(
     let mut effort_nm = [0.0; 3];
     let mut velocity_rad_s = [0.0; 3];
     let mut axis_signs = [1.0; 3];
+    // The zero pose, in the root's orientation: each joint's frame turned by
+    // the origins' rotations so far, and the offsets from joint to joint.
+    let mut turn = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut offsets = [[0.0; 3]; 2];
     for (k, jn) in names.iter().enumerate() {
         let j = joint(urdf, jn)?;
         let continuous = matches!(j.joint_type, JointType::Continuous);
@@ -381,8 +403,13 @@ fn check_leg(
                 format!("must be revolute or continuous, is {:?}", j.joint_type),
             ));
         }
-        // An axis may point either way along its canonical one.
-        let axis = j.axis.xyz.0;
+        if k > 0 {
+            offsets[k - 1] = rotate(&turn, j.origin.xyz.0);
+        }
+        turn = compose(&turn, &rpy_matrix(j.origin.rpy.0));
+        // An axis may point either way along its canonical one, in the root
+        // link's frame.
+        let axis = rotate(&turn, j.axis.xyz.0);
         let along = |sign: f64| {
             axis.iter()
                 .zip(&axes[k])
@@ -395,7 +422,10 @@ fn check_leg(
         } else {
             return Err(bad_joint(
                 jn,
-                format!("axis must be {:?} or its opposite, is {axis:?}", axes[k]),
+                format!(
+                    "axis must be {:?} or its opposite in the root link's frame, is {axis:?}",
+                    axes[k]
+                ),
             ));
         };
         // A continuous joint has no limits: the gait's own range is its range.
@@ -452,29 +482,7 @@ fn check_leg(
             ));
         }
     }
-    let [hip_origin, knee_origin] = [&joints[1].origin, &joints[2].origin];
-    let hip = hip_origin.xyz.0;
-    if hip[0].abs() > 1e-9 || hip[2].abs() > 1e-9 || !hip[1].is_finite() {
-        return Err(bad_joint(
-            &names[1],
-            "must sit at the abduction joint or beside it (an offset along y only)".into(),
-        ));
-    }
-    for (k, j) in joints.iter().enumerate() {
-        if j.origin.rpy.0.iter().any(|v| v.abs() > 1e-9) {
-            return Err(bad_joint(
-                &names[k],
-                format!("its origin must not rotate (rpy {:?})", j.origin.rpy.0),
-            ));
-        }
-    }
-    let knee = knee_origin.xyz.0;
-    if knee[0].abs() > 1e-9 || knee[1].abs() > 1e-9 || knee[2] >= 0.0 {
-        return Err(bad_joint(
-            &names[2],
-            "must sit straight below the hip".into(),
-        ));
-    }
+    let [hip, knee] = offsets;
     let shank_link = &joints[2].child.link;
     let shank = urdf
         .links
@@ -483,27 +491,40 @@ fn check_leg(
         .ok_or_else(|| RobotError::MissingLink {
             link: shank_link.clone(),
         })?;
-    let foot = find_foot(
-        urdf,
-        shank,
-        [0.0; 3],
-        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-    )
-    .ok_or_else(|| RobotError::MissingFoot {
-        link: shank_link.clone(),
-    })?;
-    if foot.0[0].abs() > 1e-9 || foot.0[1].abs() > 1e-9 || foot.0[2] >= 0.0 {
+    let (foot, foot_radius_m) =
+        find_foot(urdf, shank, [0.0; 3], turn).ok_or_else(|| RobotError::MissingFoot {
+            link: shank_link.clone(),
+        })?;
+    // A direction in the leg's plane from straight down, positive backwards
+    // (a plain zero, not -0, for a segment that hangs straight down).
+    let from_down = |v: [f64; 3]| {
+        let a = (-v[0]).atan2(-v[2]);
+        if a == 0.0 { 0.0 } else { a }
+    };
+    let (thigh_m, shank_m) = (knee[0].hypot(knee[2]), foot[0].hypot(foot[2]));
+    if !(thigh_m > 1e-6 && thigh_m.is_finite()) {
+        return Err(bad_joint(
+            &names[2],
+            format!("must sit away from the hip's axis, sits at {knee:?} m from the hip"),
+        ));
+    }
+    if !(shank_m > 1e-6 && shank_m.is_finite()) {
         return Err(RobotError::MissingFoot {
             link: shank_link.clone(),
         });
     }
+    let thigh_zero_rad = from_down(knee);
+    let knee_zero_rad = from_down(foot) - thigh_zero_rad;
     Ok(LegDescription {
         name,
         hip_in_torso_m: joints[0].origin.xyz.0,
-        hip_offset_m: hip[1],
-        thigh_m: -knee[2],
-        shank_m: -foot.0[2],
-        foot_radius_m: foot.1,
+        hip_offset_m: hip[1] + knee[1] + foot[1],
+        hip_at_m: [hip[0], hip[2]],
+        thigh_m,
+        shank_m,
+        thigh_zero_rad,
+        knee_zero_rad,
+        foot_radius_m,
         joints: names.clone(),
         limits_rad,
         axis_signs,
