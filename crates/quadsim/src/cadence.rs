@@ -79,7 +79,7 @@ impl WalkCheck {
         if let Some(w) = self
             .walks
             .iter()
-            .find(|w| !(w.rms_tilt_rad <= MAX_RMS_TILT_RAD))
+            .find(|w| w.rms_tilt_rad.is_nan() || w.rms_tilt_rad > MAX_RMS_TILT_RAD)
         {
             return Some(format!(
                 "rocked by {:.3} rad RMS at command {:.0} mm/s (at most {MAX_RMS_TILT_RAD})",
@@ -87,7 +87,9 @@ impl WalkCheck {
             ));
         }
         self.walks.windows(2).find_map(|pair| {
-            (!(pair[1].velocity_mm_s > pair[0].velocity_mm_s)).then(|| {
+            (pair[1].velocity_mm_s.partial_cmp(&pair[0].velocity_mm_s)
+                != Some(std::cmp::Ordering::Greater))
+            .then(|| {
                 format!(
                     "walked {:.0} mm/s at command {:.0} and {:.0} mm/s at {:.0}: not faster \
                      for a faster command",

@@ -107,9 +107,11 @@ pub struct LegDescription {
     /// axis that points the other way (an angle about the canonical axis is
     /// this times the joint's own).
     pub axis_signs: [f64; 3],
-    /// Torque limits from the URDF, N m, in the same order.
+    /// Torque limits from the URDF, N m, in the same order (infinite for a
+    /// continuous joint that gives none).
     pub effort_nm: [f64; 3],
-    /// Joint speed limits from the URDF, rad/s, in the same order.
+    /// Joint speed limits from the URDF, rad/s, in the same order (infinite
+    /// for a continuous joint that gives none).
     pub velocity_rad_s: [f64; 3],
 }
 
@@ -175,6 +177,8 @@ pub struct RobotDescription {
     pub camera: CameraMount,
     /// Sum of all link masses, kg.
     pub total_mass_kg: f64,
+    /// The mesh collision shapes, loaded (see [`crate::mesh`]).
+    pub meshes: Vec<crate::mesh::MeshCollision>,
 }
 
 impl RobotDescription {
@@ -185,7 +189,9 @@ impl RobotDescription {
             path: path.display().to_string(),
             source,
         })?;
-        Self::from_urdf_str(&text)
+        let urdf = parse(&text)?;
+        let map = RobotMap::conventional(&urdf)?;
+        Self::from_urdf_in(urdf, &map, path.parent().unwrap_or_else(|| Path::new("")))
     }
 
     /// Parses and checks URDF text that follows the shipped robot's naming
@@ -201,21 +207,22 @@ impl RobotDescription {
         Self::from_urdf(parse(text)?, map)
     }
 
-    /// Checks a parsed URDF with the legs and camera `map` names.
+    /// Parses and checks URDF text with the legs and camera `map` names, its
+    /// meshes' file names relative to `dir`.
+    pub fn from_urdf_str_in(text: &str, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
+        Self::from_urdf_in(parse(text)?, map, dir)
+    }
+
+    /// Checks a parsed URDF with the legs and camera `map` names (its
+    /// meshes' file names relative to the current directory).
     pub fn from_urdf(urdf: Robot, map: &RobotMap) -> Result<Self, RobotError> {
+        Self::from_urdf_in(urdf, map, Path::new(""))
+    }
+
+    /// Checks a parsed URDF with the legs and camera `map` names, its
+    /// meshes' file names relative to `dir`.
+    pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
         let root_link = check_tree(&urdf)?;
-        // Every collision shape is simulated or the robot is refused: none
-        // is dropped (the loader would skip a mesh without a word).
-        for link in &urdf.links {
-            for c in &link.collision {
-                if let Geometry::Mesh { filename, .. } = &c.geometry {
-                    return Err(RobotError::MeshCollision {
-                        link: link.name.clone(),
-                        file: filename.clone(),
-                    });
-                }
-            }
-        }
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;
@@ -275,12 +282,16 @@ impl RobotDescription {
                 reason: format!("mount {:?} {:?} is not finite", camera.xyz, camera.rpy),
             });
         }
+        // Every collision shape is simulated or the robot is refused: none
+        // is dropped.
+        let meshes = crate::mesh::load(&urdf, dir)?;
         Ok(Self {
             urdf,
             root_link,
             legs,
             camera,
             total_mass_kg,
+            meshes,
         })
     }
 
@@ -378,6 +389,10 @@ fn bad_joint(joint: &str, reason: String) -> RobotError {
     }
 }
 
+/// How far a joint's axis may be from its canonical direction (or its
+/// opposite), component by component.
+const AXIS_TOLERANCE: f64 = 1e-4;
+
 fn check_leg(
     urdf: &Robot,
     root: &str,
@@ -408,12 +423,13 @@ fn check_leg(
         }
         turn = compose(&turn, &rpy_matrix(j.origin.rpy.0));
         // An axis may point either way along its canonical one, in the root
-        // link's frame.
+        // link's frame (to within the rounding of angles written to a few
+        // digits, as 1.5708 for a quarter turn: 1e-4).
         let axis = rotate(&turn, j.axis.xyz.0);
         let along = |sign: f64| {
             axis.iter()
                 .zip(&axes[k])
-                .all(|(a, b)| (a - sign * b).abs() <= 1e-9)
+                .all(|(a, b)| (a - sign * b).abs() <= AXIS_TOLERANCE)
         };
         let axis_sign = if along(1.0) {
             1.0
@@ -443,13 +459,23 @@ fn check_leg(
                 format!("limits must be finite with lower < upper, are [{lo}, {hi}]"),
             ));
         }
-        if !(j.limit.effort.is_finite() && j.limit.effort > 0.0) {
+        // A continuous joint's <limit> is optional: with none (urdf-rs reads
+        // 0), its servo is limited in neither torque nor speed.
+        let given = |v: f64| {
+            if continuous && v == 0.0 {
+                f64::INFINITY
+            } else {
+                v
+            }
+        };
+        let (effort, velocity) = (given(j.limit.effort), given(j.limit.velocity));
+        if effort.is_nan() || effort <= 0.0 || (effort.is_infinite() && !continuous) {
             return Err(bad_joint(
                 jn,
                 format!("effort must be > 0, is {}", j.limit.effort),
             ));
         }
-        if !(j.limit.velocity.is_finite() && j.limit.velocity > 0.0) {
+        if velocity.is_nan() || velocity <= 0.0 || (velocity.is_infinite() && !continuous) {
             return Err(bad_joint(
                 jn,
                 format!("velocity limit must be > 0, is {}", j.limit.velocity),
@@ -463,8 +489,8 @@ fn check_leg(
             [-hi, -lo]
         };
         axis_signs[k] = axis_sign;
-        effort_nm[k] = j.limit.effort;
-        velocity_rad_s[k] = j.limit.velocity;
+        effort_nm[k] = effort;
+        velocity_rad_s[k] = velocity;
         joints.push(j);
     }
     // The chain: root -> abduction -> hip -> knee.

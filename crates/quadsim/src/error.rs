@@ -68,18 +68,20 @@ pub enum RobotError {
         /// What is wrong.
         reason: String,
     },
-    /// A link has a mesh collision shape, which the testbed does not load:
-    /// it would be dropped, and the robot would collide as it does not.
+    /// A link's mesh collision shape cannot be loaded: rather than have it
+    /// dropped, and the link collide as nothing, the robot is refused.
     #[error(
-        "link `{link}` has a mesh collision shape ({file}), which this testbed does not load \
-         yet; rather than drop it, the robot is refused: give the link box, cylinder, capsule \
-         or sphere collision shapes (visual meshes are fine)"
+        "link `{link}` has a mesh collision shape ({file}) that {reason}; rather than drop \
+         it, the robot is refused: put the file there, or give the link box, cylinder, capsule \
+         or sphere collision shapes"
     )]
     MeshCollision {
         /// The link's name.
         link: String,
         /// The mesh's file, as the URDF names it.
         file: String,
+        /// What is wrong with it.
+        reason: String,
     },
     /// A bare URDF's legs could not be found from its tree.
     #[error("the legs cannot be found from the URDF: {reason}")]

@@ -21,6 +21,7 @@ pub mod error;
 pub mod gait;
 pub mod heading;
 pub mod ik;
+pub mod mesh;
 pub mod robot_file;
 pub mod scale;
 pub mod scene;

@@ -362,12 +362,18 @@ impl RobotFile {
                 rpy: file.camera.rpy,
             },
         };
-        let description = RobotDescription::from_urdf_str_with(&urdf_text, &map).map_err(|e| {
-            RobotError::RobotFile {
-                file: format!("{label} (URDF {})", file.urdf.display()),
-                reason: e.to_string(),
-            }
-        })?;
+        let urdf_dir = path
+            .as_deref()
+            .and_then(Path::parent)
+            .unwrap_or_else(|| Path::new(""))
+            .join(file.urdf.parent().unwrap_or_else(|| Path::new("")));
+        let description =
+            RobotDescription::from_urdf_str_in(&urdf_text, &map, &urdf_dir).map_err(|e| {
+                RobotError::RobotFile {
+                    file: format!("{label} (URDF {})", file.urdf.display()),
+                    reason: e.to_string(),
+                }
+            })?;
         Self {
             name: file.name,
             path,

@@ -125,7 +125,31 @@ impl QuadrupedSim {
                 .friction(config.friction as Real),
             ..Default::default()
         };
-        let robot = UrdfRobot::from_robot(&description.urdf, options, std::path::Path::new(""));
+        let blueprint = options.collider_blueprint.clone();
+        let mut robot = if description.meshes.is_empty() {
+            UrdfRobot::from_robot(&description.urdf, options, std::path::Path::new(""))
+        } else {
+            // The meshes, loaded once with the description, go in as they are.
+            let urdf = crate::mesh::without_meshes(&description.urdf);
+            UrdfRobot::from_robot(&urdf, options, std::path::Path::new(""))
+        };
+        for m in &description.meshes {
+            let link = robot
+                .links
+                .iter_mut()
+                .find(|l| l.urdf_link_index == m.link)
+                .ok_or_else(|| RobotError::MissingLink {
+                    link: description.urdf.links[m.link].name.clone(),
+                })?;
+            for (shape, at) in &m.parts {
+                let mut builder = blueprint.clone();
+                builder.shape = shape.clone();
+                link.colliders.push(rapier3d_urdf::UrdfCollider {
+                    collider: builder.position(*at).build(),
+                    visual: None,
+                });
+            }
+        }
         let link_index: Vec<usize> = robot.links.iter().map(|l| l.urdf_link_index).collect();
         let joint_index: Vec<usize> = robot.joints.iter().map(|j| j.urdf_joint_index).collect();
         let handles = robot.insert_using_multibody_joints(

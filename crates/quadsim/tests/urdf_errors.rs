@@ -157,18 +157,3 @@ fn legs_too_short_for_the_gait_are_named() {
     let text = edit_joint("fl_knee", r#"xyz="0 0 -0.07""#, r#"xyz="0 0 -0.02""#);
     expect_sim_error(&text, &["leg `fl`", "thigh of 0.02 m"]);
 }
-
-#[test]
-fn a_mesh_collision_shape_is_refused_not_dropped() {
-    let torso_box = r#"<geometry><box size="0.20 0.10 0.08"/></geometry></collision>"#;
-    assert!(ERS7_URDF.contains(torso_box));
-    let text = ERS7_URDF.replacen(
-        torso_box,
-        r#"<geometry><mesh filename="package://ers7/torso.stl"/></geometry></collision>"#,
-        1,
-    );
-    expect_error(
-        &text,
-        "link `torso` has a mesh collision shape (package://ers7/torso.stl)",
-    );
-}

@@ -1,0 +1,136 @@
+//! A URDF's mesh collision shapes: found on disk beside the URDF, loaded
+//! once as convex hulls (one per mesh in the file), and handed to every
+//! world built from the robot; or an error naming the link and the file. A
+//! mesh is never dropped: the URDF loader, given a mesh it cannot read,
+//! would leave the link colliding as nothing.
+
+use std::path::{Path, PathBuf};
+
+use rapier3d::geometry::{MeshConverter, SharedShape};
+use rapier3d::math::{Pose, Real, Rotation, Vector};
+use urdf_rs::{Geometry, Robot};
+
+use crate::error::RobotError;
+
+/// One mesh collision shape of a link, as convex hulls in the link's frame.
+#[derive(Clone)]
+pub struct MeshCollision {
+    /// The link's index in the URDF.
+    pub link: usize,
+    /// The file it was read from.
+    pub file: PathBuf,
+    /// Each mesh of the file: its convex hull and where it sits in the link.
+    pub parts: Vec<(SharedShape, Pose)>,
+}
+
+impl std::fmt::Debug for MeshCollision {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("MeshCollision")
+            .field("link", &self.link)
+            .field("file", &self.file)
+            .field("parts", &self.parts.len())
+            .finish()
+    }
+}
+
+/// Where `filename` may be, for a URDF in `dir`: a plain path relative to
+/// `dir` (or absolute); `file://PATH`; `package://PACKAGE/PATH` relative to
+/// `dir` or to its parent (a ROS package's `urdf/` folder beside its
+/// `meshes/`).
+fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
+    if let Some(path) = filename.strip_prefix("file://") {
+        return vec![PathBuf::from(path)];
+    }
+    if let Some(rest) = filename.strip_prefix("package://") {
+        let within = rest.split_once('/').map_or(rest, |(_, path)| path);
+        let mut out = vec![dir.join(within), dir.join("..").join(within)];
+        out.push(dir.join(rest));
+        return out;
+    }
+    vec![dir.join(filename)]
+}
+
+/// URDF's `<origin>` as a pose (`rpy` about fixed x, y, z axes).
+fn pose(origin: &urdf_rs::Pose) -> Pose {
+    let [x, y, z] = origin.xyz.0.map(|v| v as Real);
+    let [roll, pitch, yaw] = origin.rpy.0.map(|v| v as Real);
+    Pose::from_parts(
+        Vector::new(x, y, z),
+        Rotation::from_euler(rapier3d::glamx::EulerRot::ZYX, yaw, pitch, roll),
+    )
+}
+
+/// Every mesh collision shape of `urdf`, read from beside `dir`, as convex
+/// hulls; or the first that cannot be: missing, unreadable, of a format not
+/// read (STL and Wavefront OBJ are), holding no mesh, or with no hull.
+pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> {
+    let mut out = Vec::new();
+    for (index, link) in urdf.links.iter().enumerate() {
+        for c in &link.collision {
+            let Geometry::Mesh { filename, scale } = &c.geometry else {
+                continue;
+            };
+            let refuse = |reason: String| RobotError::MeshCollision {
+                link: link.name.clone(),
+                file: filename.clone(),
+                reason,
+            };
+            let looked = candidates(dir, filename);
+            let file = looked
+                .iter()
+                .find(|p| p.is_file())
+                .cloned()
+                .ok_or_else(|| {
+                    refuse(format!(
+                        "is not there (looked for {})",
+                        looked
+                            .iter()
+                            .map(|p| p.display().to_string())
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ))
+                })?;
+            let s = scale.map_or([1.0; 3], |v| v.0).map(|v| v as Real);
+            let meshes = rapier3d_meshloader::load_from_path(
+                &file,
+                &MeshConverter::ConvexHull,
+                Vector::new(s[0], s[1], s[2]),
+            )
+            .map_err(|e| refuse(format!("cannot be read from {}: {e}", file.display())))?;
+            if meshes.is_empty() {
+                return Err(refuse(format!("{} holds no mesh", file.display())));
+            }
+            let at = pose(&c.origin);
+            let parts = meshes
+                .into_iter()
+                .map(|m| {
+                    m.map(|m| (m.shape, at * m.pose))
+                        .map_err(|e| refuse(format!("in {}: {e}", file.display())))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            out.push(MeshCollision {
+                link: index,
+                file,
+                parts,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// `urdf` with its mesh collision shapes taken out (as the zero-sized boxes
+/// the URDF loader skips), for a loader that is given them as
+/// [`MeshCollision`]s instead.
+pub fn without_meshes(urdf: &Robot) -> Robot {
+    let mut r = urdf.clone();
+    for link in &mut r.links {
+        for c in &mut link.collision {
+            if matches!(c.geometry, Geometry::Mesh { .. }) {
+                c.geometry = Geometry::Box {
+                    size: urdf_rs::Vec3([0.0; 3]),
+                };
+            }
+        }
+    }
+    r
+}
