@@ -77,6 +77,11 @@ fn main() -> Result<()> {
         100.0 * a0.rmse / range
     );
     println!("best line: RMSE {line:.1} mm/s; best quartic: RMSE {quartic:.1} mm/s");
+    let g = &sim_config.walk.gait;
+    println!(
+        "gait periods: stepping in place {:.3} s, fast forwards {:.3} s, fast backwards {:.3} s",
+        g.idle.period_s, g.fast_forwards.period_s, g.fast_backwards.period_s
+    );
     println!(
         "wall {wall:.1} s for {} commands on {} threads",
         commands.len(),
