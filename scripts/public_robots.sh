@@ -11,7 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/public-robots}
-mkdir -p "$out"
+mkdir -p "$out/measured"
 robots="a1/a1.urdf aliengo/aliengo.urdf laikago/laikago_toes_zup.urdf
 mini_cheetah/mini_cheetah.urdf quadruped/vision60.urdf quadruped/spirit40.urdf"
 
