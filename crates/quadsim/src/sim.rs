@@ -108,7 +108,8 @@ impl QuadrupedSim {
         // Stand the robot: torso high enough for the idle stance's feet to touch.
         let idle = config.walk.gait.idle;
         let leg = &description.legs[0];
-        let torso_z = idle.body_height_m - leg.hip_in_torso_m[2] + leg.foot_radius_m + 0.002;
+        let hip_z = leg.hip_in_torso_m[2] + leg.hip_at_m[1];
+        let torso_z = idle.body_height_m - hip_z + leg.foot_radius_m + 0.002;
         let band = config.beacon.insert(&mut world);
         let start_xy_m = [
             config.beacon.xy_m[0] - config.start_distance_m,

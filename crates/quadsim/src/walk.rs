@@ -37,6 +37,21 @@ struct Leg {
     phase_offset: f64,
 }
 
+impl Leg {
+    /// Where the foot must be, relative to the abduction joint, for the
+    /// gait's target relative to the hip joint (below it, outwards of the
+    /// leg's plane).
+    fn target(&self, t: FootTarget) -> [f64; 3] {
+        let g = &self.geometry;
+        let [forwards, up] = g.hip_at_m;
+        [
+            t.x + forwards,
+            self.side * t.outwards + g.hip_offset_m,
+            t.z + up,
+        ]
+    }
+}
+
 /// The walk engine's state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WalkEngine {
@@ -93,8 +108,7 @@ impl WalkEngine {
                 let p = g.params_for(command_mm_s);
                 for k in 0..PHASES {
                     let phase = f64::from(k) / f64::from(PHASES);
-                    let FootTarget { x, outwards, z } = foot_target(&p, p.step_length_m, phase);
-                    let target_m = [x, leg.side * outwards + leg.geometry.hip_offset_m, z];
+                    let target_m = leg.target(foot_target(&p, p.step_length_m, phase));
                     let Some(a) = ik::inverse(&leg.geometry, target_m) else {
                         return Err(RobotError::GaitOutOfReach {
                             leg: description.name,
@@ -146,11 +160,7 @@ impl WalkEngine {
             .map(|leg| {
                 let step = ramp * (p.step_length_m - leg.side * steer_m);
                 let phase = (self.clock.phase() + leg.phase_offset).fract();
-                let FootTarget { x, outwards, z } = foot_target(&p, step, phase);
-                ik::inverse(
-                    &leg.geometry,
-                    [x, leg.side * outwards + leg.geometry.hip_offset_m, z],
-                )
+                ik::inverse(&leg.geometry, leg.target(foot_target(&p, step, phase)))
             })
             .collect()
     }

@@ -175,3 +175,152 @@ fn a_joint_whose_axis_points_the_other_way_moves_the_robot_the_same() {
         .to_string();
     assert!(e.contains("or its opposite"), "{e}");
 }
+
+/// The ERS-7 parsed, edited by `edit`, and read with its usual legs.
+fn edited_urdf(edit: impl FnOnce(&mut urdf_rs::Robot)) -> RobotDescription {
+    let mut urdf = urdf_rs::read_from_string(ERS7_URDF).expect("parses");
+    edit(&mut urdf);
+    let map = quadsim::description::RobotMap::conventional(&urdf).expect("the ERS-7's names");
+    RobotDescription::from_urdf(urdf, &map).expect("loads")
+}
+
+fn joint_mut<'a>(urdf: &'a mut urdf_rs::Robot, name: &str) -> &'a mut urdf_rs::Joint {
+    urdf.joints
+        .iter_mut()
+        .find(|j| j.name == name)
+        .expect("the joint")
+}
+
+fn link_mut<'a>(urdf: &'a mut urdf_rs::Robot, name: &str) -> &'a mut urdf_rs::Link {
+    urdf.links
+        .iter_mut()
+        .find(|l| l.name == name)
+        .expect("the link")
+}
+
+/// The torso's position after standing 0.5 s and walking 2 s at 300.
+fn walked(d: &RobotDescription) -> [f64; 3] {
+    let mut sim = QuadrupedSim::new(d, SimConfig::default()).expect("a world");
+    sim.advance(0.5);
+    sim.set_command(300.0).expect("finite");
+    sim.advance(2.0);
+    assert!(sim.is_upright());
+    sim.torso().position_m
+}
+
+/// `d` walks as the shipped ERS-7 does, up to rapier's f32 rounding (which
+/// 2.5 s of footfalls amplify to tens of micrometres).
+fn walks_as_the_ers7(d: &RobotDescription) {
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    let (a, b) = (walked(d), walked(&shipped));
+    for k in 0..3 {
+        assert!((a[k] - b[k]).abs() < 1e-3, "torso at {a:?} against {b:?}");
+    }
+}
+
+const LEGS: [&str; 4] = ["fl", "fr", "hl", "hr"];
+
+#[test]
+fn joint_origins_that_turn_the_legs_frames_are_the_same_robot() {
+    // Every abduction joint's frame turned half round about z, its axis
+    // written the other way: in the torso's frame the same axis, and the
+    // hip and knee axes below it now (0, -1, 0). The legs' contents are
+    // symmetric about z, so the robot is the same.
+    let d = edited_urdf(|u| {
+        for leg in LEGS {
+            let j = joint_mut(u, &format!("{leg}_abduction"));
+            j.origin.rpy.0 = [0.0, 0.0, std::f64::consts::PI];
+            j.axis.xyz.0 = [-1.0, 0.0, 0.0];
+        }
+    });
+    for leg in &d.legs {
+        assert_eq!(leg.axis_signs, [1.0, -1.0, -1.0], "{}", leg.name);
+    }
+    walks_as_the_ers7(&d);
+}
+
+#[test]
+fn a_zero_pose_with_the_thigh_pointing_back_is_the_same_robot() {
+    // Each thigh written pointing backwards at the zero pose (the knee along
+    // -x of its frame, its mass and inertia turned with it) and the shank
+    // hanging down from it: the hip's and knee's ranges shift by a quarter
+    // turn, and the robot is the same.
+    let quarter = std::f64::consts::FRAC_PI_2;
+    let d = edited_urdf(|u| {
+        for leg in LEGS {
+            let knee = joint_mut(u, &format!("{leg}_knee"));
+            knee.origin.xyz.0 = [-0.07, 0.0, 0.0];
+            knee.limit.lower += quarter;
+            knee.limit.upper += quarter;
+            let hip = joint_mut(u, &format!("{leg}_hip"));
+            hip.limit.lower -= quarter;
+            hip.limit.upper -= quarter;
+            let thigh = &mut link_mut(u, &format!("{leg}_thigh")).inertial;
+            thigh.origin.xyz.0 = [-0.035, 0.0, 0.0];
+            std::mem::swap(&mut thigh.inertia.ixx, &mut thigh.inertia.izz);
+        }
+    });
+    for leg in &d.legs {
+        assert!((leg.thigh_zero_rad - quarter).abs() < 1e-12, "{leg:?}");
+        assert!((leg.knee_zero_rad + quarter).abs() < 1e-12, "{leg:?}");
+        assert!((leg.thigh_m - 0.07).abs() < 1e-12);
+    }
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    let signs = |d: &RobotDescription| d.legs.iter().map(|l| l.knee_sign()).collect::<Vec<_>>();
+    assert_eq!(signs(&d), signs(&shipped), "the knees bend as the ERS-7's");
+    walks_as_the_ers7(&d);
+}
+
+#[test]
+fn a_hip_ahead_of_the_abduction_joint_is_the_same_robot() {
+    // Each abduction joint 1 cm further forwards along its own axis, the
+    // hip 1 cm back from it (and the shoulder's mass kept where it was):
+    // the same axes in the same places, so the same robot.
+    let d = edited_urdf(|u| {
+        for leg in LEGS {
+            joint_mut(u, &format!("{leg}_abduction")).origin.xyz.0[0] += 0.01;
+            joint_mut(u, &format!("{leg}_hip")).origin.xyz.0[0] = -0.01;
+            link_mut(u, &format!("{leg}_shoulder"))
+                .inertial
+                .origin
+                .xyz
+                .0[0] = -0.01;
+        }
+    });
+    for leg in &d.legs {
+        assert_eq!(leg.hip_at_m, [-0.01, 0.0]);
+    }
+    walks_as_the_ers7(&d);
+    // A hip below the abduction axis is another robot, and it walks too.
+    let lower = edited_urdf(|u| {
+        for leg in LEGS {
+            joint_mut(u, &format!("{leg}_abduction")).origin.xyz.0[2] += 0.01;
+            joint_mut(u, &format!("{leg}_hip")).origin.xyz.0[2] = -0.01;
+        }
+    });
+    assert_eq!(lower.legs[0].hip_at_m, [0.0, -0.01]);
+    stands(&lower);
+}
+
+#[test]
+fn a_continuous_joint_with_no_limit_has_none() {
+    let text = ERS7_URDF.replace(
+        r#"<joint name="fl_abduction" type="revolute">"#,
+        r#"<joint name="fl_abduction" type="continuous">"#,
+    );
+    let limit = r#"<limit lower="-0.6" upper="0.6" effort="1.0" velocity="6.0"/>"#;
+    let at = text.find(r#"name="fl_abduction""#).expect("the joint");
+    let l = text[at..].find(limit).expect("its limit") + at;
+    let mut text = text;
+    text.replace_range(l..l + limit.len(), "");
+    let d = RobotDescription::from_urdf_str(&text).expect("a continuous joint needs no limit");
+    assert_eq!(d.legs[0].effort_nm[0], f64::INFINITY);
+    assert_eq!(d.legs[0].velocity_rad_s[0], f64::INFINITY);
+    stands(&d);
+    // A revolute joint still needs its limits.
+    let revolute = text.replace(
+        r#"<joint name="fl_abduction" type="continuous">"#,
+        r#"<joint name="fl_abduction" type="revolute">"#,
+    );
+    assert!(RobotDescription::from_urdf_str(&revolute).is_err());
+}
