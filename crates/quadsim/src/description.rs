@@ -389,6 +389,24 @@ fn bad_joint(joint: &str, reason: String) -> RobotError {
     }
 }
 
+/// The fixed joints from link `from` down to link `to`, in that order (none
+/// if they are the same link), or `None` if `to` is not `from` or fixed
+/// below it.
+fn fixed_path<'a>(urdf: &'a Robot, from: &str, to: &str) -> Option<Vec<&'a urdf_rs::Joint>> {
+    let mut path = Vec::new();
+    let mut at = to;
+    while at != from {
+        let j = urdf
+            .joints
+            .iter()
+            .find(|j| j.child.link == at && matches!(j.joint_type, JointType::Fixed))?;
+        path.push(j);
+        at = &j.parent.link;
+    }
+    path.reverse();
+    Some(path)
+}
+
 /// How far a joint's axis may be from its canonical direction (or its
 /// opposite), component by component.
 const AXIS_TOLERANCE: f64 = 1e-4;
@@ -407,8 +425,11 @@ fn check_leg(
     let mut axis_signs = [1.0; 3];
     // The zero pose, in the root's orientation: each joint's frame turned by
     // the origins' rotations so far, and the offsets from joint to joint.
+    // The chain: root -> abduction -> hip -> knee, with links fixed between.
     let mut turn = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let mut abduction_at = [0.0; 3];
     let mut offsets = [[0.0; 3]; 2];
+    let mut above = root.to_string();
     for (k, jn) in names.iter().enumerate() {
         let j = joint(urdf, jn)?;
         let continuous = matches!(j.joint_type, JointType::Continuous);
@@ -418,9 +439,33 @@ fn check_leg(
                 format!("must be revolute or continuous, is {:?}", j.joint_type),
             ));
         }
-        if k > 0 {
-            offsets[k - 1] = rotate(&turn, j.origin.xyz.0);
+        let fixed = fixed_path(urdf, &above, &j.parent.link).ok_or_else(|| {
+            bad_joint(
+                jn,
+                format!("its parent must be `{above}` or a link fixed to it"),
+            )
+        })?;
+        // From the joint above (or the root) through the fixed links to this
+        // joint, in the root's orientation.
+        let mut from_above = [0.0; 3];
+        for f in &fixed {
+            let step = rotate(&turn, f.origin.xyz.0);
+            from_above = [0, 1, 2].map(|i| from_above[i] + step[i]);
+            turn = compose(&turn, &rpy_matrix(f.origin.rpy.0));
         }
+        let own = rotate(&turn, j.origin.xyz.0);
+        let at = if fixed.is_empty() {
+            // As written (no sums: the ERS-7's geometry to the bit).
+            if k == 0 { j.origin.xyz.0 } else { own }
+        } else {
+            [0, 1, 2].map(|i| from_above[i] + own[i])
+        };
+        if k == 0 {
+            abduction_at = at;
+        } else {
+            offsets[k - 1] = at;
+        }
+        above.clone_from(&j.child.link);
         turn = compose(&turn, &rpy_matrix(j.origin.rpy.0));
         // An axis may point either way along its canonical one, in the root
         // link's frame (to within the rounding of angles written to a few
@@ -493,21 +538,6 @@ fn check_leg(
         velocity_rad_s[k] = velocity;
         joints.push(j);
     }
-    // The chain: root -> abduction -> hip -> knee.
-    if joints[0].parent.link != root {
-        return Err(bad_joint(
-            &names[0],
-            format!("its parent must be the root link `{root}`"),
-        ));
-    }
-    for k in 1..3 {
-        if joints[k].parent.link != joints[k - 1].child.link {
-            return Err(bad_joint(
-                &names[k],
-                format!("its parent must be `{}`", joints[k - 1].child.link),
-            ));
-        }
-    }
     let [hip, knee] = offsets;
     let shank_link = &joints[2].child.link;
     let shank = urdf
@@ -543,7 +573,7 @@ fn check_leg(
     let knee_zero_rad = from_down(foot) - thigh_zero_rad;
     Ok(LegDescription {
         name,
-        hip_in_torso_m: joints[0].origin.xyz.0,
+        hip_in_torso_m: abduction_at,
         hip_offset_m: hip[1] + knee[1] + foot[1],
         hip_at_m: [hip[0], hip[2]],
         thigh_m,
@@ -574,6 +604,12 @@ fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
 
 fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
+}
+
+/// `v`, a point in a joint's child frame, in its parent's frame.
+pub(crate) fn place(origin: &urdf_rs::Pose, v: [f64; 3]) -> [f64; 3] {
+    let r = rotate(&rpy_matrix(origin.rpy.0), v);
+    [0, 1, 2].map(|i| origin.xyz.0[i] + r[i])
 }
 
 fn compose(a: &Rotation, b: &Rotation) -> Rotation {

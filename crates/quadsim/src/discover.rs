@@ -28,6 +28,18 @@ fn chain<'a>(urdf: &'a Robot, link: &str) -> Option<Vec<&'a urdf_rs::Joint>> {
     Some(out)
 }
 
+/// Where `joint` sits in the root link's frame at the zero pose: its origin
+/// through every joint above it.
+fn position_in_root(urdf: &Robot, joint: &urdf_rs::Joint) -> [f64; 3] {
+    let mut p = joint.origin.xyz.0;
+    let mut at = &joint.parent.link;
+    while let Some(j) = urdf.joints.iter().find(|j| &j.child.link == at) {
+        p = crate::description::place(&j.origin, p);
+        at = &j.parent.link;
+    }
+    p
+}
+
 /// The legs and camera of `urdf` (see the module's documentation), or what
 /// was found instead.
 pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
@@ -52,9 +64,9 @@ pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
             ));
             continue;
         };
-        if joints.len() == 3 && joints[0].parent.link == root {
+        if joints.len() == 3 {
             let names = joints.iter().map(|j| j.name.clone()).collect();
-            legs.insert(names, joints[0].origin.xyz.0);
+            legs.insert(names, position_in_root(urdf, joints[0]));
         } else if !joints.is_empty() {
             others.push(format!(
                 "{} ({} actuated joints from the root)",

@@ -324,3 +324,76 @@ fn a_continuous_joint_with_no_limit_has_none() {
     );
     assert!(RobotDescription::from_urdf_str(&revolute).is_err());
 }
+
+#[test]
+fn links_fixed_between_a_legs_joints_are_the_same_robot() {
+    // A massless mount fixed to the torso carries each abduction joint, and a
+    // massless housing fixed halfway down each thigh carries its knee.
+    let d = edited_urdf(|u| {
+        for leg in LEGS {
+            // An empty link and a fixed joint, from the ERS-7's camera frame
+            // and its neck.
+            let empty = u
+                .links
+                .iter()
+                .find(|l| l.name == "camera")
+                .expect("camera")
+                .clone();
+            let neck = u
+                .joints
+                .iter()
+                .find(|j| j.name == "neck")
+                .expect("neck")
+                .clone();
+            let frame = |name: String| urdf_rs::Link {
+                name,
+                ..empty.clone()
+            };
+            let fixed = |name: String, parent: &str, child: &str, xyz: [f64; 3]| urdf_rs::Joint {
+                name,
+                origin: urdf_rs::Pose {
+                    xyz: urdf_rs::Vec3(xyz),
+                    rpy: urdf_rs::Vec3([0.0; 3]),
+                },
+                parent: urdf_rs::LinkName {
+                    link: parent.into(),
+                },
+                child: urdf_rs::LinkName { link: child.into() },
+                ..neck.clone()
+            };
+            let (mount, housing) = (format!("{leg}_mount"), format!("{leg}_housing"));
+            let abduction = joint_mut(u, &format!("{leg}_abduction"));
+            let at = abduction.origin.xyz.0;
+            abduction.origin.xyz.0 = [0.0; 3];
+            abduction.parent.link.clone_from(&mount);
+            let knee = joint_mut(u, &format!("{leg}_knee"));
+            knee.origin.xyz.0 = [0.0, 0.0, -0.035];
+            knee.parent.link.clone_from(&housing);
+            u.links.push(frame(mount.clone()));
+            u.links.push(frame(housing.clone()));
+            u.joints
+                .push(fixed(format!("{leg}_mount_fixed"), "torso", &mount, at));
+            let thigh = format!("{leg}_thigh");
+            u.joints.push(fixed(
+                format!("{leg}_housing_fixed"),
+                &thigh,
+                &housing,
+                [0.0, 0.0, -0.035],
+            ));
+        }
+    });
+    let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
+    for (leg, own) in d.legs.iter().zip(&shipped.legs) {
+        assert_eq!(leg.hip_in_torso_m, own.hip_in_torso_m);
+        assert!((leg.thigh_m - own.thigh_m).abs() < 1e-15);
+    }
+    walks_as_the_ers7(&d);
+    // And a bare URDF's legs are found through them.
+    let urdf = urdf_rs::write_to_string(&d.urdf).expect("writes");
+    let found = quadsim::discover::discover(&urdf_rs::read_from_string(&urdf).expect("reads"))
+        .expect("legs found");
+    assert_eq!(
+        found.legs[0],
+        ["fl_abduction", "fl_hip", "fl_knee"].map(String::from)
+    );
+}
