@@ -21,7 +21,10 @@
 //! ```
 //!
 //! Without `[gait]`, a robot walks the ERS-7's gait scaled to its size
-//! ([`crate::RobotScale`]). `[gait]` replaces any of the scaled values, in the
+//! ([`crate::RobotScale`]), at the cadence the walk test finds
+//! ([`crate::cadence`]). `[gait] cadence = F` quickens (F < 1) or slows the
+//! scaled gait's periods and step lengths together, and skips the test; so
+//! does any `period_s`. `[gait]` replaces any of the scaled values, in the
 //! robot's own units: `v_max_mm_s` and `v_min_mm_s` (the commands Eq. 1's fast
 //! walks stand for), and in `[gait.idle]`, `[gait.fast_forwards]` and
 //! `[gait.fast_backwards]` any field of [`GaitParams`] (`step_length_m`,
