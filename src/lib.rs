@@ -12,12 +12,13 @@ use testbed::trial::{Recording, TrialOutcome};
 /// The flags that choose a scenario: robot, scenario file, and settings.
 #[derive(Debug, Clone, clap::Args)]
 pub struct ScenarioArgs {
-    /// The robot: a shipped robot's name (ers7, trotter: assets/robots/) or a
-    /// robot file's path (default: ers7) [robot.file].
+    /// The robot: a shipped robot's name (ers7, trotter: assets/robots/), a
+    /// robot file's path, or a URDF's (legs, camera and cadence found from
+    /// it; default: ers7) [robot.file].
     #[arg(long, value_name = "NAME_OR_PATH")]
     pub robot: Option<String>,
-    /// A bare URDF in the shipped robot's naming, walked with the default gait
-    /// (a robot file is the general way) [robot.urdf].
+    /// A URDF as published: the same as --robot FILE.urdf (kept as an
+    /// alias) [robot.urdf].
     #[arg(long)]
     pub urdf: Option<PathBuf>,
     /// A scenario file (TOML, e.g. assets/scenarios/paper.toml, or a run's

@@ -99,7 +99,7 @@ fn a_robot_that_cannot_walk_the_gait_is_refused_naming_its_file() {
         assert!(msg.contains(needle), "`{msg}` should mention `{needle}`");
     }
     assert!(
-        s.urdf_path.is_none(),
+        s.robot_file.is_none(),
         "a refused robot changed the scenario"
     );
     std::fs::remove_dir_all(&dir).ok();

@@ -1,8 +1,10 @@
 //! A URDF's legs and camera found from its tree, for a robot given as a bare
 //! URDF: a leg is a chain of three actuated joints from the root link to a
 //! sphere foot (on the lower leg or on a link fixed to it); front and rear,
-//! left and right come from where the hips sit; the camera looks forward from
-//! the front of the root link. A robot file still says any of it instead.
+//! left and right come from where the hips sit; the camera is the URDF's
+//! `camera` or `camera_link` frame if it has one on a fixed joint, else it
+//! looks forward from the front of the root link. A robot file still says any
+//! of it instead.
 
 use std::collections::BTreeMap;
 
@@ -114,8 +116,24 @@ pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
     let [Some(fl), Some(fr), Some(hl), Some(hr)] = named else {
         return Err(not_found("the hips are not one in each corner".into()));
     };
-    // The camera at the middle of the root's front face (its collision box's,
-    // or the front hips' line), looking forward.
+    // A camera frame the URDF names (`camera` or `camera_link`, on a fixed
+    // joint: its optical axis +x, image up +z, as REP 103's camera_link)...
+    let named = urdf.joints.iter().find(|j| {
+        matches!(j.joint_type, JointType::Fixed)
+            && ["camera", "camera_link"].contains(&j.child.link.as_str())
+    });
+    if let Some(j) = named {
+        return Ok(RobotMap {
+            legs: [fl, fr, hl, hr],
+            camera: CameraMount {
+                parent: j.parent.link.clone(),
+                xyz: j.origin.xyz.0,
+                rpy: j.origin.rpy.0,
+            },
+        });
+    }
+    // ... or at the middle of the root's front face (its collision box's, or
+    // the front hips' line), looking forward.
     let root_link = urdf.links.iter().find(|l| l.name == root);
     let front_face = root_link
         .into_iter()

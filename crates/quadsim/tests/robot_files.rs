@@ -247,7 +247,20 @@ fn a_bare_urdf_is_a_robot_whose_legs_are_found_from_its_tree() {
     let joints = |d: &RobotDescription| d.legs.iter().map(|l| l.joints.clone()).collect::<Vec<_>>();
     assert_eq!(joints(&bare.description), joints(&named));
     assert_eq!(bare.description.legs, named.legs);
-    assert_eq!(bare.description.camera.parent, "torso");
+    // The URDF's own camera frame is the camera: the ERS-7 to the bit.
+    assert_eq!(bare.description.camera, named.camera);
+    assert_eq!(bare.sim_config(), quadsim::SimConfig::default());
+    // Without one, the camera looks forward from the torso's front face.
+    let no_camera = ERS7_URDF
+        .replace(r#"<link name="camera"/>"#, "")
+        .replace(
+            r#"<joint name="camera_mount" type="fixed"><parent link="head"/><child link="camera"/><origin xyz="0.041 0 0.005" rpy="0 0 0"/></joint>"#,
+            "",
+        );
+    let faced =
+        RobotFile::from_file(&write(&dir, "no_camera.urdf", &no_camera)).expect("legs found");
+    assert_eq!(faced.description.camera.parent, "torso");
+    assert_eq!(faced.description.camera.xyz, [0.1, 0.0, 0.0]);
     // Its robot file says what was found, and reads back to the same robot.
     assert!(
         bare.text

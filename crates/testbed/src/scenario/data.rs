@@ -3,7 +3,6 @@
 //! the errors of settings that cannot be applied.
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 use quadsim::{RobotDescription, RobotScale, SimConfig, SimError};
 use scasm::ScasmConfig;
@@ -71,10 +70,8 @@ pub struct Scenario {
     pub description: RobotDescription,
     /// The URDF's text (part of the reference cache's key).
     pub urdf_text: String,
-    /// Where the URDF was read from (`None`: the shipped robot).
-    pub urdf_path: Option<PathBuf>,
     /// The robot file, as named (a shipped robot's name or a path), and its
-    /// text (`None`: the default ERS-7, or a bare `robot.urdf`).
+    /// text (`None`: the default ERS-7).
     pub robot_file: Option<(String, String)>,
     /// The world, robot controllers and camera.
     pub sim: SimConfig,
@@ -129,7 +126,6 @@ impl Scenario {
         Ok(Self {
             description: RobotDescription::from_urdf_str(&urdf_text).map_err(SimError::from)?,
             urdf_text,
-            urdf_path: None,
             robot_file: None,
             sim: SimConfig::default(),
             learner_name: crate::learners::registry::DEFAULT.into(),

@@ -362,16 +362,15 @@ impl Scenario {
 
     /// Every setting as a scenario file (TOML): what a run records as its
     /// `config.toml`, and what `--config` reads back to the same scenario. The
-    /// shipped robot's `robot.urdf` is left out (it is the default).
+    /// default robot's `robot.file` is left out.
     pub fn to_toml(&self) -> String {
         let mut table = toml::Table::new();
         for key in self.recorded_keys() {
             let Some(value) = self.get(&key) else {
                 continue;
             };
-            if (key == "robot.urdf" && self.urdf_path.is_none())
-                || (key == "robot.file" && self.robot_file.is_none())
-            {
+            // robot.urdf is recorded as robot.file.
+            if key == "robot.urdf" || (key == "robot.file" && self.robot_file.is_none()) {
                 continue;
             }
             // `learner.batch-ml.gamma` is `[learner.batch-ml] gamma = ...`.

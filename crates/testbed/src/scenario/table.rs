@@ -3,9 +3,7 @@
 //! come from their declarations. `--set`, scenario files, a run's
 //! `config.toml` and `--set list` all read this table.
 
-use std::path::{Path, PathBuf};
-
-use quadsim::{RobotDescription, RobotFile, RobotScale};
+use quadsim::{RobotFile, RobotScale};
 use scasm::ScasmConfig;
 
 use crate::scenario::data::{
@@ -80,15 +78,10 @@ pub(crate) const SETTINGS: [Entry; 22] = [
     Entry {
         key: "robot.urdf",
         kind: Kind::Text,
-        doc: "a URDF file of a quadruped, walked with the current gait",
-        set: Scenario::set_urdf,
-        get: |s| {
-            toml::Value::String(
-                s.urdf_path
-                    .as_ref()
-                    .map_or_else(String::new, |p| p.display().to_string()),
-            )
-        },
+        doc: "a URDF file, as robot.file takes it (kept for older scenario files)",
+        set: Scenario::set_robot_file,
+        // Recorded as robot.file.
+        get: |_| toml::Value::String(String::new()),
     },
     Entry {
         key: "trial.duration",
@@ -320,21 +313,7 @@ impl Scenario {
         self.sim = sim;
         self.description = robot.description;
         self.urdf_text = robot.urdf_text;
-        self.urdf_path = None;
         self.robot_file = Some((value.into(), robot.text));
-        Ok(())
-    }
-
-    fn set_urdf(&mut self, value: &str) -> Result<(), String> {
-        let (text, description) = read_urdf(Path::new(value)).map_err(|e| e.to_string())?;
-        // A robot that cannot walk the gait is refused here, naming its
-        // file, rather than in every trial.
-        quadsim::walk::WalkEngine::check_feasible(&self.sim.walk, &description.legs)
-            .map_err(|e| format!("{value}: {e}"))?;
-        self.description = description;
-        self.urdf_text = text;
-        self.urdf_path = Some(PathBuf::from(value));
-        self.robot_file = None;
         Ok(())
     }
 
@@ -369,19 +348,6 @@ pub(crate) fn unknown(key: &str) -> SettingError {
 }
 
 /// The robot of a URDF file.
-fn read_urdf(path: &Path) -> Result<(String, RobotDescription), SettingError> {
-    let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
-        file: file.clone(),
-        reason: e.to_string(),
-    })?;
-    let description = RobotDescription::from_urdf_str(&text).map_err(|e| SettingError::File {
-        file,
-        reason: e.to_string(),
-    })?;
-    Ok((text, description))
-}
-
 /// Seeds written `A..B` (B excluded, at least one seed).
 pub fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
     let (a, b) = text
