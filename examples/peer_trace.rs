@@ -109,15 +109,13 @@ fn main() -> Result<()> {
         .iter()
         .flat_map(|l| l.joints.iter().map(String::as_str))
         .collect();
-    let effort: Vec<f64> = joints
+    // The servos' torque limits as the simulator reads them (none, written
+    // null, for a continuous joint whose URDF gives none).
+    let effort: Vec<Option<f64>> = d
+        .legs
         .iter()
-        .map(|name| {
-            d.urdf
-                .joints
-                .iter()
-                .find(|j| j.name == *name)
-                .map_or(f64::NAN, |j| j.limit.effort * config.servo.torque_scale)
-        })
+        .flat_map(|l| l.effort_nm)
+        .map(|e| Some(e * config.servo.torque_scale).filter(|e| e.is_finite()))
         .collect();
     let peer = serde_json::json!({
         "urdf": "robot.urdf",

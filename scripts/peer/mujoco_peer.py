@@ -52,8 +52,11 @@ def build(peer, urdf, integrator, solref):
     for name, effort in zip(peer["joints"], peer["effort_nm"]):
         a = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
         a.set_to_position(kp=peer["kp_nm_per_rad"], kv=peer["kd_nm_s_per_rad"])
-        a.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
-        a.forcerange = [-effort, effort]
+        if effort is None:  # a continuous joint whose URDF gives no limit
+            a.forcelimited = mujoco.mjtLimited.mjLIMITED_FALSE
+        else:
+            a.forcelimited = mujoco.mjtLimited.mjLIMITED_TRUE
+            a.forcerange = [-effort, effort]
     return spec.compile()
 
 
