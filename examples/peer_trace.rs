@@ -49,7 +49,9 @@ fn robot(name: Option<&str>) -> Result<(RobotDescription, SimConfig, String)> {
         )),
         Some(name) => {
             let file = RobotFile::load(name)?;
-            Ok((file.description.clone(), file.sim_config(), file.urdf_text))
+            // Its meshes found from wherever the copy is read.
+            let text = file.urdf_text_elsewhere()?;
+            Ok((file.description.clone(), file.sim_config(), text))
         }
     }
 }

@@ -4,7 +4,7 @@
 # machine: `peer_trace` records a walk's servo targets and times this build on
 # it; `mujoco_peer.py` replays the targets in MuJoCo and times its C rollout.
 #
-#   bash scripts/peer/compare.sh [ROBOT] [COMMAND]     # ROBOT: ers7 (default), trotter, a robot file
+#   bash scripts/peer/compare.sh [ROBOT] [COMMAND]     # ROBOT: ers7 (default), trotter, a robot file, a URDF
 #
 # Installs mujoco==4.0.0 into target/mujoco-venv on first use (not part of
 # the required tests). Run it on an idle machine.
@@ -12,7 +12,8 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 robot=${1:-ers7}
 command=${2:-300}
-out=target/peer/$robot
+name=$(basename "$robot")
+out=target/peer/${name%.*}
 venv=target/mujoco-venv
 if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import mujoco" 2> /dev/null; then
     python3 -m venv "$venv"

@@ -50,6 +50,34 @@ fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
     vec![dir.join(filename)]
 }
 
+/// Where `filename` is, for a URDF in `dir` (see [`candidates`]), if it is.
+pub fn find(dir: &Path, filename: &str) -> Option<PathBuf> {
+    candidates(dir, filename).into_iter().find(|p| p.is_file())
+}
+
+/// `urdf` with every mesh file name (visual and collision) that is found
+/// beside `dir` made absolute: the same robot, for a copy of the URDF
+/// written elsewhere (a peer simulator's).
+pub fn with_absolute_meshes(urdf: &Robot, dir: &Path) -> Robot {
+    let mut r = urdf.clone();
+    let absolute = |geometry: &mut Geometry| {
+        if let Geometry::Mesh { filename, .. } = geometry {
+            if let Some(p) = find(dir, filename).and_then(|p| p.canonicalize().ok()) {
+                *filename = p.display().to_string();
+            }
+        }
+    };
+    for link in &mut r.links {
+        link.visual
+            .iter_mut()
+            .for_each(|v| absolute(&mut v.geometry));
+        link.collision
+            .iter_mut()
+            .for_each(|c| absolute(&mut c.geometry));
+    }
+    r
+}
+
 /// URDF's `<origin>` as a pose (`rpy` about fixed x, y, z axes).
 fn pose(origin: &urdf_rs::Pose) -> Pose {
     let [x, y, z] = origin.xyz.0.map(|v| v as Real);

@@ -237,6 +237,8 @@ pub struct RobotFile {
     pub text: String,
     /// The URDF's text.
     pub urdf_text: String,
+    /// The folder its mesh file names are relative to.
+    pub urdf_dir: PathBuf,
     /// The checked robot.
     pub description: RobotDescription,
     /// The file's `[gait]`, with the cadence the walk test found if the file
@@ -382,6 +384,7 @@ impl RobotFile {
             path,
             text: text.to_string(),
             urdf_text,
+            urdf_dir,
             description,
             gait: file.gait,
             cadence_fit: None,
@@ -433,6 +436,15 @@ impl RobotFile {
                     .join("; ")
             ))),
         }
+    }
+
+    /// The URDF as text for a copy written elsewhere: its mesh file names
+    /// made absolute (see [`crate::mesh::with_absolute_meshes`]).
+    pub fn urdf_text_elsewhere(&self) -> Result<String, RobotError> {
+        let urdf = crate::mesh::with_absolute_meshes(&self.description.urdf, &self.urdf_dir);
+        urdf_rs::write_to_string(&urdf).map_err(|e| RobotError::Parse {
+            reason: e.to_string(),
+        })
     }
 
     /// The robot's settings: the defaults scaled to its size
