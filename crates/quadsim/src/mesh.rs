@@ -50,7 +50,9 @@ fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
     vec![dir.join(filename)]
 }
 
-/// Where `filename` is, for a URDF in `dir` (see [`candidates`]), if it is.
+/// Where `filename` is, for a URDF in `dir`, if it is: a plain path relative
+/// to `dir` (or absolute), `file://PATH`, or `package://PACKAGE/PATH`
+/// relative to `dir` or its parent.
 pub fn find(dir: &Path, filename: &str) -> Option<PathBuf> {
     candidates(dir, filename).into_iter().find(|p| p.is_file())
 }
