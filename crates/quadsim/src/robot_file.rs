@@ -428,7 +428,8 @@ impl RobotFile {
                 self.checked(label)
             }
             Err(failures) => Err(bad(format!(
-                "the gait scaled from the ERS-7's does not walk this robot at any cadence tried                  ({}); give its own gait (periods and step lengths) under [gait] in a robot file",
+                "the gait scaled from the ERS-7's does not walk this robot at any cadence tried \
+                 ({}); give its own gait (periods and step lengths) under [gait] in a robot file",
                 failures
                     .iter()
                     .map(|(f, why)| format!("cadence {f}: {why}"))

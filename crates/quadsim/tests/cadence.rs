@@ -33,6 +33,11 @@ fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 /// The ERS-7 made `s` times larger, dynamically similar: lengths times `s`,
 /// masses times `s^3`, inertias times `s^5`, torques times `s^4`.
 fn scaled_ers7(s: f64) -> String {
+    scaled_ers7_with_torque(s, 1.0)
+}
+
+/// [`scaled_ers7`] with its joints' torques times `weaker` besides.
+fn scaled_ers7_with_torque(s: f64, weaker: f64) -> String {
     let mut r = urdf_rs::read_from_string(ERS7_URDF).expect("parses");
     let scale3 = |v: &mut urdf_rs::Vec3| v.0 = v.0.map(|x| x * s);
     for link in &mut r.links {
@@ -65,7 +70,7 @@ fn scaled_ers7(s: f64) -> String {
     }
     for j in &mut r.joints {
         scale3(&mut j.origin.xyz);
-        j.limit.effort *= s.powi(4);
+        j.limit.effort *= s.powi(4) * weaker;
     }
     urdf_rs::write_to_string(&r).expect("writes")
 }
@@ -148,4 +153,24 @@ fn a_robot_files_cadence_quickens_the_scaled_gait_and_is_checked() {
             .to_string();
         assert!(e.contains("gait.cadence must be in (0, 2]"), "{bad}: {e}");
     }
+}
+
+#[test]
+fn a_robot_that_walks_at_no_cadence_is_refused_with_each_cadences_failure() {
+    // Twice the ERS-7's size with a twentieth of its torque: it cannot
+    // stand, at any cadence.
+    let d = dir("weak");
+    let path = write(&d, "weak.urdf", &scaled_ers7_with_torque(2.0, 0.05));
+    let e = RobotFile::from_file(&path)
+        .expect_err("refused")
+        .to_string();
+    assert!(e.contains("weak.urdf"), "{e}");
+    assert!(
+        e.contains("does not walk this robot at any cadence tried"),
+        "{e}"
+    );
+    for factor in cadence::FACTORS {
+        assert!(e.contains(&format!("cadence {factor}:")), "{factor}: {e}");
+    }
+    assert!(e.contains("[gait]"), "says what to do: {e}");
 }
