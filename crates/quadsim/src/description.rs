@@ -606,6 +606,18 @@ fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
 }
 
+/// A URDF origin (`xyz`, and `rpy` about the fixed x, y and z axes:
+/// `Rz(yaw) Ry(pitch) Rx(roll)`) as a rapier pose.
+pub(crate) fn urdf_pose(xyz: [f64; 3], rpy: [f64; 3]) -> rapier3d::math::Pose {
+    use rapier3d::math::{Pose, Real, Rotation, Vector};
+    let [x, y, z] = xyz.map(|v| v as Real);
+    let [roll, pitch, yaw] = rpy.map(|v| v as Real);
+    Pose::from_parts(
+        Vector::new(x, y, z),
+        Rotation::from_euler(rapier3d::glamx::EulerRot::ZYX, yaw, pitch, roll),
+    )
+}
+
 /// `v`, a point in a joint's child frame, in its parent's frame.
 pub(crate) fn place(origin: &urdf_rs::Pose, v: [f64; 3]) -> [f64; 3] {
     let r = rotate(&rpy_matrix(origin.rpy.0), v);

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use rapier3d::geometry::{MeshConverter, SharedShape};
-use rapier3d::math::{Pose, Real, Rotation, Vector};
+use rapier3d::math::{Pose, Real, Vector};
 use urdf_rs::{Geometry, Robot};
 
 use crate::error::RobotError;
@@ -80,16 +80,6 @@ pub fn with_absolute_meshes(urdf: &Robot, dir: &Path) -> Robot {
     r
 }
 
-/// URDF's `<origin>` as a pose (`rpy` about fixed x, y, z axes).
-fn pose(origin: &urdf_rs::Pose) -> Pose {
-    let [x, y, z] = origin.xyz.0.map(|v| v as Real);
-    let [roll, pitch, yaw] = origin.rpy.0.map(|v| v as Real);
-    Pose::from_parts(
-        Vector::new(x, y, z),
-        Rotation::from_euler(rapier3d::glamx::EulerRot::ZYX, yaw, pitch, roll),
-    )
-}
-
 /// Every mesh collision shape of `urdf`, read from beside `dir`, as convex
 /// hulls; or the first that cannot be: missing, unreadable, of a format not
 /// read (STL and Wavefront OBJ are), holding no mesh, or with no hull.
@@ -130,7 +120,7 @@ pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> 
             if meshes.is_empty() {
                 return Err(refuse(format!("{} holds no mesh", file.display())));
             }
-            let at = pose(&c.origin);
+            let at = crate::description::urdf_pose(c.origin.xyz.0, c.origin.rpy.0);
             let parts = meshes
                 .into_iter()
                 .map(|m| {

@@ -207,16 +207,8 @@ impl QuadrupedSim {
             urdf_limits.push((leg.effort_nm, leg.velocity_rad_s));
         }
 
-        let (t, rpy) = (description.camera.xyz, description.camera.rpy);
-        let camera_mount = Pose::from_parts(
-            Vector::new(t[0] as Real, t[1] as Real, t[2] as Real),
-            Rotation::from_euler(
-                rapier3d::glamx::EulerRot::XYZ,
-                rpy[0] as Real,
-                rpy[1] as Real,
-                rpy[2] as Real,
-            ),
-        );
+        let camera_mount =
+            crate::description::urdf_pose(description.camera.xyz, description.camera.rpy);
 
         WalkEngine::check_feasible(&config.walk, &description.legs)?;
         let mut walk = WalkEngine::new(config.walk, &description.legs);

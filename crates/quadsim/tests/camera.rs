@@ -232,3 +232,45 @@ fn a_camera_on_its_links_face_is_not_hidden_by_the_link() {
     assert_eq!(hidden, 0, "{hidden} of {} frames hidden", frames.len());
     assert!(frames.iter().all(|f| f.obs_px.is_ok()), "{frames:?}");
 }
+
+#[test]
+fn a_camera_mounts_rpy_turns_it_as_a_urdf_origin_does() {
+    // rpy about the fixed x, y, z axes: R = Rz(yaw) Ry(pitch) Rx(roll), on
+    // the torso, whose orientation the sim reports.
+    let [roll, pitch, yaw] = [0.3_f64, 0.2, 0.1];
+    let urdf = urdf_rs::read_from_string(ERS7_URDF).expect("urdf");
+    let mut map = quadsim::description::RobotMap::conventional(&urdf).expect("map");
+    map.camera = quadsim::description::CameraMount {
+        parent: "torso".into(),
+        xyz: [0.1, 0.0, 0.0],
+        rpy: [roll, pitch, yaw],
+    };
+    let d = RobotDescription::from_urdf(urdf, &map).expect("mounted");
+    let sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    let (sr, cr, sp, cp, sy, cy) = (
+        roll.sin(),
+        roll.cos(),
+        pitch.sin(),
+        pitch.cos(),
+        yaw.sin(),
+        yaw.cos(),
+    );
+    // The columns of R: where the mount turns x (the optical axis) and z
+    // (image up), in the torso's frame.
+    let expected = [
+        [cy * cp, sy * cp, -sp],
+        [cy * sp * cr + sy * sr, sy * sp * cr - cy * sr, cp * cr],
+    ];
+    let [qx, qy, qz, qw] = sim.torso().orientation.map(|v| v as f32);
+    let torso = rapier3d::math::Rotation::from_xyzw(qx, qy, qz, qw);
+    let camera = sim.camera_pose().rotation;
+    for (axis, want) in [Vector::X, Vector::Z].into_iter().zip(expected) {
+        let got = torso.inverse() * (camera * axis);
+        for k in 0..3 {
+            assert!(
+                (f64::from(got[k]) - want[k]).abs() < 1e-5,
+                "{axis:?}: {got:?} against {want:?}"
+            );
+        }
+    }
+}
