@@ -227,9 +227,13 @@ fn a_rust_learners_own_settings_change_it_and_others_keys_are_refused() {
         "{text}"
     );
     let e = s
-        .set("learner.scasm.gamma=0.9")
-        .expect_err("scasm has none of its own");
+        .set("learner.scasm-paper.gamma=0.9")
+        .expect_err("scasm-paper has none of its own");
     assert!(e.to_string().contains("none of its own"), "{e}");
+    let e = s
+        .set("learner.scasm.gamma=0.9")
+        .expect_err("gamma is shared");
+    assert!(e.to_string().contains("self_check"), "{e}");
     let e = s
         .set("learner.nobody.gamma=0.9")
         .expect_err("no such learner");

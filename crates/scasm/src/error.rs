@@ -60,6 +60,14 @@ pub enum ConfigError {
         /// The value given.
         command_scale: f64,
     },
+    /// The self-check's confirmation time must be finite and non-negative.
+    #[error(
+        "the self-check's good_after_s must be a finite number of seconds >= 0, got {good_after_s}"
+    )]
+    GoodAfter {
+        /// The value given.
+        good_after_s: f64,
+    },
     /// The batch learner's solve period must be finite and positive.
     #[error("batch-ml's solve_every_s must be finite and > 0, got {solve_every_s}")]
     SolveEvery {

@@ -41,6 +41,7 @@ mod mode;
 mod poly_fit;
 mod polynomial;
 mod scasm;
+pub mod self_check;
 mod wls;
 
 /// Most regressors one fit can have: a sensor model of degree up to this, an
@@ -57,6 +58,7 @@ pub use polynomial::{MAX_COEFFS, Polynomial};
 pub use scasm::Scasm;
 #[cfg(feature = "std")]
 pub use scasm::declarations::{SCASM, SCASM_EIV, SCASM_PAPER};
+pub use self_check::SelfCheck;
 
 #[cfg(test)]
 mod proptests;

@@ -9,6 +9,7 @@ use crate::learner::{CalibrationLearner, Event};
 use crate::mode::Mode;
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
+use crate::self_check::{Guard, SelfCheck};
 
 /// How far (s) an event's time may stray from the learner's clock, for hosts
 /// that add up their time steps in another order.
@@ -39,6 +40,9 @@ pub struct Scasm {
     /// Readings (and their `x_a`) gathered for the next point of the sensor fit.
     #[cfg_attr(feature = "serde", serde(default))]
     window: ReadingWindow,
+    /// The check on itself, if it has one (see [`Scasm::with_self_check`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    guard: Option<Guard>,
 }
 
 /// The sensor fit in use (see [`SensorFit`]). A learner holds one, inline:
@@ -151,7 +155,54 @@ impl Scasm {
             action_model: None,
             action_start: None,
             window: ReadingWindow::default(),
+            guard: None,
         }
+    }
+
+    /// A learner in the given mode that checks itself (simultaneous mode
+    /// only: the one-sided modes, which learn from a model given, are built
+    /// as by [`Scasm::new`]). From `2 t_start`, when dead reckoning uses the
+    /// learned action model, each reading checks that both models are still
+    /// monotone over the inputs seen so far: commands for A, readings for S,
+    /// within [`crate::self_check::TURN_TOLERANCE`]. A walk's response and
+    /// a camera's reading of a beacon are; a coupling whose model has turned
+    /// back on itself has learned something false. From a failed check until
+    /// the next pass, the learner reports the last models that passed every
+    /// check for `good_after_s` (if they pass over the inputs seen by then)
+    /// instead of its own; the coupling itself runs on unchanged, and
+    /// reports its own models again as soon as they pass. In a trial whose
+    /// models never fail, it is [`Scasm::new`]'s learner, bit for bit.
+    pub fn with_self_check(
+        params: ScasmParams,
+        mode: Mode,
+        check: SelfCheck,
+    ) -> Result<Self, ConfigError> {
+        if !(check.good_after_s.is_finite() && check.good_after_s >= 0.0) {
+            return Err(ConfigError::GoodAfter {
+                good_after_s: check.good_after_s,
+            });
+        }
+        let mut learner = Self::new(params, mode)?;
+        if mode == Mode::Simultaneous {
+            learner.guard = Some(Guard::new(check));
+        }
+        Ok(learner)
+    }
+
+    /// How many times the self-check has failed with good models to fall
+    /// back to (0 for a learner without one).
+    pub fn fallbacks(&self) -> u32 {
+        self.guard.as_ref().map_or(0, Guard::fallbacks)
+    }
+
+    /// Whether the learner is reporting its last good models in place of
+    /// its own (see [`Scasm::with_self_check`]).
+    pub fn falling_back(&self) -> bool {
+        self.fallback().is_some()
+    }
+
+    fn fallback(&self) -> Option<(Polynomial, Polynomial)> {
+        self.guard.as_ref().and_then(Guard::fallback)
     }
 
     /// The hyper-parameters in use.
@@ -221,6 +272,9 @@ impl Scasm {
             self.x_a += velocity * dt_s;
         }
         self.action_fit.integrate(command, dt_s);
+        if let Some(g) = &mut self.guard {
+            g.saw_command(command);
+        }
         self.clock_s = t_s + dt_s;
         Ok(())
     }
@@ -242,6 +296,7 @@ impl Scasm {
                     }
                 }
                 self.learn_sensor(obs_px);
+                self.check_self(t_s, obs_px);
             }
             Mode::SensorFromConstantAction | Mode::SensorFromAction(_) => {
                 self.learn_sensor(obs_px);
@@ -254,6 +309,18 @@ impl Scasm {
             }
         }
         Ok(())
+    }
+
+    /// The self-check after a reading at `t_s` (see [`Scasm::with_self_check`]).
+    fn check_self(&mut self, t_s: f64, obs_px: f64) {
+        let models = self.action_model.zip(self.sensor_model);
+        let in_use = t_s >= 2.0 * self.params.t_start_s();
+        if let Some(guard) = &mut self.guard {
+            guard.saw_reading(obs_px);
+            if let (true, Some(models)) = (in_use, models) {
+                guard.check(t_s, models);
+            }
+        }
     }
 
     /// `S_t(obs)`, recorded as the latest `x_s`, if S exists and gives a number.
@@ -320,14 +387,14 @@ impl CalibrationLearner for Scasm {
     fn action_model(&self) -> Option<Polynomial> {
         match self.mode {
             Mode::SensorFromAction(a) => Some(a),
-            _ => self.action_model,
+            _ => self.fallback().map(|(a, _)| a).or(self.action_model),
         }
     }
 
     fn sensor_model(&self) -> Option<Polynomial> {
         match self.mode {
             Mode::ActionFromSensor(s) => Some(s),
-            _ => self.sensor_model,
+            _ => self.fallback().map(|(_, s)| s).or(self.sensor_model),
         }
     }
 
@@ -349,8 +416,9 @@ pub mod declarations {
 
     use super::Scasm;
     use crate::config::{ScasmConfig, SensorFit};
-    use crate::declaration::{BoxedLearner, BuildContext, Declaration};
+    use crate::declaration::{BoxedLearner, BuildContext, Declaration, Kind, Setting};
     use crate::mode::Mode;
+    use crate::self_check::SelfCheck;
 
     /// The shared settings every variant reads.
     const COMMON: [&str; 5] = ["gamma", "beta", "t_start", "sensor_degree", "action_degree"];
@@ -359,6 +427,44 @@ pub mod declarations {
         let params = config.validate().map_err(|e| e.to_string())?;
         Ok(Box::new(
             Scasm::new(params, mode).map_err(|e| e.to_string())?,
+        ))
+    }
+
+    /// The self-check's settings (see [`Scasm::with_self_check`]).
+    fn checked_settings() -> Vec<Setting> {
+        vec![
+            Setting::new(
+                "self_check",
+                Kind::Count,
+                1.0,
+                (0.0, false, 1.0),
+                "1: while a model is not monotone over the inputs seen, report the last good \
+                 models instead; 0: the coupling unchecked",
+            ),
+            Setting::new(
+                "good_after_s",
+                Kind::Number,
+                10.0,
+                (0.0, false, f64::INFINITY),
+                "how long models must pass the self-check before they are the ones fallen back to, s",
+            ),
+        ]
+    }
+
+    /// A variant with `config`, checked as its own settings say.
+    fn build_checked(
+        config: ScasmConfig,
+        c: &BuildContext,
+    ) -> Result<BoxedLearner, std::string::String> {
+        if c.own.count("self_check") == 0 {
+            return build(config, c.mode);
+        }
+        let params = config.validate().map_err(|e| e.to_string())?;
+        let check = SelfCheck {
+            good_after_s: c.own.get("good_after_s"),
+        };
+        Ok(Box::new(
+            Scasm::with_self_check(params, c.mode, check).map_err(|e| e.to_string())?,
         ))
     }
 
@@ -383,7 +489,8 @@ pub mod declarations {
     /// SCASM with the sensor fit's readings averaged in windows.
     pub const SCASM: Declaration = Declaration {
         name: "scasm",
-        about: "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, 5)",
+        about: "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, \
+                5), falling back to its last good models while a model is not monotone",
         shared: &[
             "gamma",
             "beta",
@@ -392,26 +499,26 @@ pub mod declarations {
             "action_degree",
             "sensor_window",
         ],
-        settings: Vec::new,
+        settings: checked_settings,
         one_sided: true,
-        build: |c: &BuildContext| build(c.shared, c.mode),
+        build: |c: &BuildContext| build_checked(c.shared, c),
     };
 
     /// SCASM whose sensor fit corrects for the reading noise.
     pub const SCASM_EIV: Declaration = Declaration {
         name: "scasm-eiv",
         about: "SCASM whose sensor fit corrects for the reading noise, estimated from the \
-                readings: no errors-in-variables bias",
+                readings (no errors-in-variables bias), with scasm's self-check",
         shared: SCASM.shared,
-        settings: Vec::new,
+        settings: checked_settings,
         one_sided: true,
         build: |c: &BuildContext| {
-            build(
+            build_checked(
                 ScasmConfig {
                     sensor_fit: SensorFit::Corrected,
                     ..c.shared
                 },
-                c.mode,
+                c,
             )
         },
     };

@@ -1,0 +1,133 @@
+//! The SCASM learner's check on itself: in a clean world it ends with the
+//! coupling's own models; when a stretch of the trial turns its action model
+//! back on itself (the robot held in place while it is commanded to walk), it
+//! notices, and reports its last good models, nearer the truth, until its
+//! own pass again.
+
+mod common;
+
+use scasm::self_check::{TURN_TOLERANCE, turn_back};
+use scasm::{CalibrationLearner, Event, Mode, Polynomial, Scasm, ScasmConfig, SelfCheck};
+
+const CHECK: SelfCheck = SelfCheck { good_after_s: 10.0 };
+
+/// 150 s of the common world's robot, held in place (its feet slipping) from
+/// `held_s.0` to `held_s.1` whatever the command.
+fn events_held(held_s: (f64, f64)) -> Vec<Event> {
+    let dt = common::DT_S;
+    let (mut x, mut dir, mut out) = (2400.0_f64, 1.0_f64, Vec::new());
+    let mut lcg: u64 = 4242;
+    let mut command = 0.0;
+    for k in 0..3000 {
+        let t_s = f64::from(k) * dt;
+        if k % 60 == 0 {
+            command = dir * common::uniform(&mut lcg) * 300.0;
+        }
+        if !(held_s.0..held_s.1).contains(&t_s) {
+            x -= common::true_velocity(command) * dt;
+        }
+        let obs_px = 76_800.0 / x + (common::uniform(&mut lcg) - 0.5) * 2.0;
+        if (dir > 0.0 && x < 1200.0) || (dir < 0.0 && x > 3600.0) {
+            dir = -dir;
+        }
+        out.push(Event::Command {
+            t_s,
+            dt_s: dt,
+            command,
+        });
+        out.push(Event::Reading {
+            t_s: t_s + dt,
+            obs_px,
+        });
+    }
+    out
+}
+
+/// RMSE of `model` against the true response after the best scale, mm/s.
+fn action_error(model: &Polynomial) -> f64 {
+    let commands: Vec<f64> = (-15..=15).map(|k| 20.0 * f64::from(k)).collect();
+    let (pv, pp) = commands.iter().fold((0.0, 0.0), |(pv, pp), &c| {
+        let p = model.eval(c);
+        (pv + p * common::true_velocity(c), pp + p * p)
+    });
+    let k = pv / pp;
+    let sum: f64 = commands
+        .iter()
+        .map(|&c| (k * model.eval(c) - common::true_velocity(c)).powi(2))
+        .sum();
+    (sum / commands.len() as f64).sqrt()
+}
+
+fn learners() -> (Scasm, Scasm) {
+    let params = ScasmConfig::default().validate().unwrap();
+    (
+        Scasm::new(params, Mode::Simultaneous).unwrap(),
+        Scasm::with_self_check(params, Mode::Simultaneous, CHECK).unwrap(),
+    )
+}
+
+#[test]
+fn in_a_clean_world_it_ends_with_the_couplings_own_models() {
+    let (mut plain, mut checked) = learners();
+    common::feed(&mut plain, &events_held((0.0, 0.0)));
+    common::feed(&mut checked, &events_held((0.0, 0.0)));
+    // Its models may fail for a moment as the commands reach new ground;
+    // once they pass, they are reported as they are.
+    assert!(!checked.falling_back());
+    assert_eq!(plain.action_model(), checked.action_model());
+    assert_eq!(plain.sensor_model(), checked.sensor_model());
+    assert_eq!(plain.x_a(), checked.x_a(), "the coupling runs on unchanged");
+}
+
+#[test]
+fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
+    // Held for 15 s (its feet slipping) at eight moments of the trial.
+    let holds = [60.0, 80.0, 100.0, 110.0, 120.0, 125.0, 130.0, 135.0];
+    let mut much_better = 0;
+    for from_s in holds {
+        let events = events_held((from_s, from_s + 15.0));
+        let (mut plain, mut checked) = learners();
+        common::feed(&mut plain, &events);
+        common::feed(&mut checked, &events);
+        let e_plain = action_error(&plain.action_model().unwrap());
+        let e_checked = action_error(&checked.action_model().unwrap());
+        eprintln!(
+            "held from {from_s} s: unchecked {e_plain:.1} mm/s, checked {e_checked:.1} mm/s, \
+             {} fallbacks",
+            checked.fallbacks()
+        );
+        assert!(
+            checked.fallbacks() >= 1,
+            "held from {from_s} s: not noticed"
+        );
+        assert!(
+            e_checked <= e_plain,
+            "held from {from_s} s: {e_checked} > {e_plain}"
+        );
+        if checked.falling_back() {
+            let (a, s) = (
+                checked.action_model().unwrap(),
+                checked.sensor_model().unwrap(),
+            );
+            assert!(turn_back(&a, -300.0, 300.0) <= TURN_TOLERANCE);
+            assert!(turn_back(&s, 21.3, 64.0) <= TURN_TOLERANCE);
+        }
+        if e_checked < 0.5 * e_plain {
+            much_better += 1;
+        }
+    }
+    assert!(
+        much_better >= holds.len() / 2,
+        "{much_better} of {}",
+        holds.len()
+    );
+}
+
+#[test]
+fn a_bad_setting_is_refused() {
+    let params = ScasmConfig::default().validate().unwrap();
+    for bad in [f64::NAN, -1.0, f64::INFINITY] {
+        let check = SelfCheck { good_after_s: bad };
+        assert!(Scasm::with_self_check(params, Mode::Simultaneous, check).is_err());
+    }
+}
