@@ -184,12 +184,7 @@ mod tests {
     use super::*;
 
     fn poly(c: &[f64]) -> Polynomial {
-        Polynomial::new(c).unwrap()
-    }
-
-    /// Two models that pass over any inputs.
-    fn models() -> Option<(Polynomial, Polynomial)> {
-        Some((Polynomial::identity(), Polynomial::identity()))
+        Polynomial::new(c).expect("a polynomial")
     }
 
     #[test]

@@ -59,10 +59,10 @@ fn action_error(model: &Polynomial) -> f64 {
 }
 
 fn learners() -> (Scasm, Scasm) {
-    let params = ScasmConfig::default().validate().unwrap();
+    let params = ScasmConfig::default().validate().expect("the defaults");
     (
-        Scasm::new(params, Mode::Simultaneous).unwrap(),
-        Scasm::with_self_check(params, Mode::Simultaneous, CHECK).unwrap(),
+        Scasm::new(params, Mode::Simultaneous).expect("a learner"),
+        Scasm::with_self_check(params, Mode::Simultaneous, CHECK).expect("a learner"),
     )
 }
 
@@ -89,8 +89,8 @@ fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
         let (mut plain, mut checked) = learners();
         common::feed(&mut plain, &events);
         common::feed(&mut checked, &events);
-        let e_plain = action_error(&plain.action_model().unwrap());
-        let e_checked = action_error(&checked.action_model().unwrap());
+        let e_plain = action_error(&plain.action_model().expect("a model"));
+        let e_checked = action_error(&checked.action_model().expect("a model"));
         eprintln!(
             "held from {from_s} s: unchecked {e_plain:.1} mm/s, checked {e_checked:.1} mm/s, \
              {} fallbacks",
@@ -106,8 +106,8 @@ fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
         );
         if checked.falling_back() {
             let (a, s) = (
-                checked.action_model().unwrap(),
-                checked.sensor_model().unwrap(),
+                checked.action_model().expect("a model"),
+                checked.sensor_model().expect("a model"),
             );
             assert!(turn_back(&a, -300.0, 300.0) <= TURN_TOLERANCE);
             assert!(turn_back(&s, 21.3, 64.0) <= TURN_TOLERANCE);
@@ -125,7 +125,7 @@ fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
 
 #[test]
 fn a_bad_setting_is_refused() {
-    let params = ScasmConfig::default().validate().unwrap();
+    let params = ScasmConfig::default().validate().expect("the defaults");
     for bad in [f64::NAN, -1.0, f64::INFINITY] {
         let check = SelfCheck { good_after_s: bad };
         assert!(Scasm::with_self_check(params, Mode::Simultaneous, check).is_err());
