@@ -163,8 +163,10 @@ impl Scasm {
     /// only: the one-sided modes, which learn from a model given, are built
     /// as by [`Scasm::new`]). From `2 t_start`, when dead reckoning uses the
     /// learned action model, each reading checks that both models are still
-    /// monotone over the inputs seen so far: commands for A, readings for S,
-    /// within [`crate::self_check::TURN_TOLERANCE`]. A walk's response and
+    /// monotone over their inputs: A over the command range
+    /// (`±command_scale`, and any command seen beyond it), S over the
+    /// readings seen so far, within [`crate::self_check::TURN_TOLERANCE`]
+    /// of their values' range. A walk's response and
     /// a camera's reading of a beacon are; a coupling whose model has turned
     /// back on itself has learned something false. From a failed check until
     /// the next pass, the learner reports the last models that passed every
@@ -184,7 +186,7 @@ impl Scasm {
         }
         let mut learner = Self::new(params, mode)?;
         if mode == Mode::Simultaneous {
-            learner.guard = Some(Guard::new(check));
+            learner.guard = Some(Guard::new(check, params.command_scale()));
         }
         Ok(learner)
     }

@@ -1,8 +1,9 @@
 //! A SCASM learner's check on itself, from nothing but its own models and the
 //! inputs it has seen: each model must still be monotone over the inputs it
-//! is used on (commands for A, readings for S), as a walk's response and a
-//! camera's reading of a beacon are. A coupling whose model has turned back on
-//! itself has gone wrong, and the learner restarts it from its last good state.
+//! is used on (the command range for A, the readings seen for S), as a walk's
+//! response and a camera's reading of a beacon are. A coupling whose model has turned back on
+//! itself has learned something false; until it passes again, the learner
+//! reports the last models that passed instead.
 
 use crate::polynomial::Polynomial;
 
@@ -12,7 +13,7 @@ const CHECK_POINTS: usize = 33;
 /// How far a model may turn back on itself over its inputs' range, as a
 /// fraction of the range of its values there, and still count as monotone
 /// (a fitted polynomial wiggles a little where the response is flat).
-pub const TURN_TOLERANCE: f64 = 0.05;
+pub const TURN_TOLERANCE: f64 = 0.01;
 
 /// The self-check's setting.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,10 +104,11 @@ pub(crate) struct Guard {
 }
 
 impl Guard {
-    pub(crate) fn new(check: SelfCheck) -> Self {
+    /// A check of models over at least the commands `-command_scale..=command_scale`.
+    pub(crate) fn new(check: SelfCheck, command_scale: f64) -> Self {
         Self {
             check,
-            commands: None,
+            commands: Some(Span::of(-command_scale).widened(command_scale)),
             readings: None,
             good: None,
             pending: None,
@@ -205,9 +207,9 @@ mod tests {
 
     #[test]
     fn a_small_wiggle_is_within_the_tolerance() {
-        // c^3 - 0.0675 c turns back between c = -0.15 and 0.15 by under 1 %
+        // c^3 - 0.03 c turns back between c = -0.1 and 0.1 by 0.2 %
         // of its range over [-1, 1].
-        let m = poly(&[0.0, -0.0675, 0.0, 1.0]);
+        let m = poly(&[0.0, -0.03, 0.0, 1.0]);
         let turn = turn_back(&m, -1.0, 1.0);
         assert!(turn > 0.0 && turn <= TURN_TOLERANCE, "{turn}");
     }
@@ -216,7 +218,7 @@ mod tests {
     fn good_models_are_those_that_passed_for_the_set_time() {
         let line = |k: f64| poly(&[0.0, k]);
         let bad = (poly(&[0.0, 0.9, -0.003]), line(1.0));
-        let mut g = Guard::new(SelfCheck { good_after_s: 10.0 });
+        let mut g = Guard::new(SelfCheck { good_after_s: 10.0 }, 300.0);
         g.saw_command(-300.0);
         g.saw_command(300.0);
         g.check(0.0, (line(1.0), line(1.0)));
