@@ -440,8 +440,8 @@ pub mod declarations {
                 Kind::Count,
                 1.0,
                 (0.0, false, 1.0),
-                "1: while a model is not monotone over the inputs seen, report the last good \
-                 models instead; 0: the coupling unchecked",
+                "1: while a model is not monotone over its inputs (A over the command range, S \
+                 over the readings seen), report the last good models instead; 0: unchecked",
             ),
             Setting::new(
                 "good_after_s",

@@ -5,7 +5,7 @@
 
 mod common;
 
-use scasm::{BatchMl, BatchMlConfig, CalibrationLearner, Event, Polynomial};
+use scasm::{BatchMl, BatchMlConfig, CalibrationLearner, Event};
 
 const TAU_S: f64 = 0.15;
 
@@ -30,32 +30,9 @@ fn lagged_events() -> Vec<Event> {
             dir = -dir;
         }
         let t_s = f64::from(k) * dt;
-        out.push(Event::Command {
-            t_s,
-            dt_s: dt,
-            command,
-        });
-        out.push(Event::Reading {
-            t_s: t_s + dt,
-            obs_px,
-        });
+        common::push_frame(&mut out, t_s, command, obs_px);
     }
     out
-}
-
-/// RMSE of `model` against the steady response after the best scale, mm/s.
-fn action_error(model: &Polynomial) -> f64 {
-    let commands: Vec<f64> = (-15..=15).map(|k| 20.0 * f64::from(k)).collect();
-    let (pv, pp) = commands.iter().fold((0.0, 0.0), |(pv, pp), &c| {
-        let p = model.eval(c);
-        (pv + p * common::true_velocity(c), pp + p * p)
-    });
-    let k = pv / pp;
-    let sum: f64 = commands
-        .iter()
-        .map(|&c| (k * model.eval(c) - common::true_velocity(c)).powi(2))
-        .sum();
-    (sum / commands.len() as f64).sqrt()
 }
 
 #[test]
@@ -64,7 +41,7 @@ fn the_lag_is_learned_and_a_is_the_steady_response() {
     let run = |config: BatchMlConfig| {
         let mut learner = BatchMl::new(config.validate().expect("valid"));
         common::feed(&mut learner, &events);
-        let error = action_error(&learner.action_model().expect("A"));
+        let error = common::action_error(&learner.action_model().expect("A"));
         (error, learner.lag_time_constant_s())
     };
     let (plain, none) = run(BatchMlConfig::default());

@@ -7,7 +7,7 @@
 mod common;
 
 use scasm::self_check::{TURN_TOLERANCE, turn_back};
-use scasm::{CalibrationLearner, Event, Mode, Polynomial, Scasm, ScasmConfig, SelfCheck};
+use scasm::{CalibrationLearner, Event, Mode, Scasm, ScasmConfig, SelfCheck};
 
 const CHECK: SelfCheck = SelfCheck { good_after_s: 10.0 };
 
@@ -30,32 +30,9 @@ fn events_held(held_s: (f64, f64)) -> Vec<Event> {
         if (dir > 0.0 && x < 1200.0) || (dir < 0.0 && x > 3600.0) {
             dir = -dir;
         }
-        out.push(Event::Command {
-            t_s,
-            dt_s: dt,
-            command,
-        });
-        out.push(Event::Reading {
-            t_s: t_s + dt,
-            obs_px,
-        });
+        common::push_frame(&mut out, t_s, command, obs_px);
     }
     out
-}
-
-/// RMSE of `model` against the true response after the best scale, mm/s.
-fn action_error(model: &Polynomial) -> f64 {
-    let commands: Vec<f64> = (-15..=15).map(|k| 20.0 * f64::from(k)).collect();
-    let (pv, pp) = commands.iter().fold((0.0, 0.0), |(pv, pp), &c| {
-        let p = model.eval(c);
-        (pv + p * common::true_velocity(c), pp + p * p)
-    });
-    let k = pv / pp;
-    let sum: f64 = commands
-        .iter()
-        .map(|&c| (k * model.eval(c) - common::true_velocity(c)).powi(2))
-        .sum();
-    (sum / commands.len() as f64).sqrt()
 }
 
 fn learners() -> (Scasm, Scasm) {
@@ -89,8 +66,8 @@ fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
         let (mut plain, mut checked) = learners();
         common::feed(&mut plain, &events);
         common::feed(&mut checked, &events);
-        let e_plain = action_error(&plain.action_model().expect("a model"));
-        let e_checked = action_error(&checked.action_model().expect("a model"));
+        let e_plain = common::action_error(&plain.action_model().expect("a model"));
+        let e_checked = common::action_error(&checked.action_model().expect("a model"));
         eprintln!(
             "held from {from_s} s: unchecked {e_plain:.1} mm/s, checked {e_checked:.1} mm/s, \
              {} fallbacks",

@@ -4,7 +4,7 @@
 // Each test file uses what it needs of this module.
 #![allow(dead_code)]
 
-use scasm::{CalibrationLearner, Event};
+use scasm::{CalibrationLearner, Event, Polynomial};
 
 pub const DT_S: f64 = 0.05;
 
@@ -40,15 +40,7 @@ pub fn events(from: u64, to: u64) -> Vec<Event> {
             dir = -dir;
         }
         if k >= from {
-            out.push(Event::Command {
-                t_s,
-                dt_s: DT_S,
-                command,
-            });
-            out.push(Event::Reading {
-                t_s: t_s + DT_S,
-                obs_px,
-            });
+            push_frame(&mut out, t_s, command, obs_px);
         }
     }
     out
@@ -58,4 +50,33 @@ pub fn feed(learner: &mut dyn CalibrationLearner, events: &[Event]) {
     for &e in events {
         learner.handle(e).expect("valid event");
     }
+}
+
+/// Appends one frame: `command` over `DT_S` from `t_s`, then a reading at its end.
+pub fn push_frame(out: &mut Vec<Event>, t_s: f64, command: f64, obs_px: f64) {
+    out.push(Event::Command {
+        t_s,
+        dt_s: DT_S,
+        command,
+    });
+    out.push(Event::Reading {
+        t_s: t_s + DT_S,
+        obs_px,
+    });
+}
+
+/// RMSE of `model` against the true (steady) response after the best scale,
+/// mm/s, over commands -300..=300 in steps of 20.
+pub fn action_error(model: &Polynomial) -> f64 {
+    let commands: Vec<f64> = (-15..=15).map(|k| 20.0 * f64::from(k)).collect();
+    let (pv, pp) = commands.iter().fold((0.0, 0.0), |(pv, pp), &c| {
+        let p = model.eval(c);
+        (pv + p * true_velocity(c), pp + p * p)
+    });
+    let k = pv / pp;
+    let sum: f64 = commands
+        .iter()
+        .map(|&c| (k * model.eval(c) - true_velocity(c)).powi(2))
+        .sum();
+    (sum / commands.len() as f64).sqrt()
 }
