@@ -195,3 +195,44 @@ fn a_runs_config_reads_back_to_the_same_scenario() {
     assert_eq!(back.to_toml(), s.to_toml());
     assert_eq!(back.reference_key(), s.reference_key());
 }
+
+#[test]
+fn a_learners_doubt_of_its_own_models_is_in_its_trace_and_figures() {
+    let (scenario, models, recording) = setup();
+    // A short memory (10 s): its models turn back on themselves now and then
+    // (in this trial for about 12 s of its 150).
+    let mut short = scenario.clone();
+    short.set("learner.gamma=0.995").expect("gamma");
+    let checked = experiment::learn(&short, models, recording, "scasm").expect("scasm");
+    assert!(checked.trace.iter().all(|r| r.falling_back.is_some()));
+    let frames_back = checked
+        .trace
+        .iter()
+        .filter(|r| r.falling_back == Some(true))
+        .count();
+    assert!(frames_back > 0, "no fallback with gamma 0.995");
+    let figures = testbed::summary::Figures::of(&checked, (1.0, 1.0, 1.0));
+    let frame_s = recording.frames[0].dt_s;
+    assert!((figures.fallback_s - frames_back as f64 * frame_s).abs() < 1e-6);
+    let dir = temp_dir("fallback-trace");
+    testbed::output::write_learner_run(&dir, &checked).expect("written");
+    let trace = std::fs::read_to_string(dir.join("trace.csv")).expect("trace.csv");
+    let header: Vec<&str> = trace.lines().next().expect("header").split(',').collect();
+    let column = header
+        .iter()
+        .position(|&h| h == "falling_back")
+        .expect("a falling_back column");
+    let ones = trace
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(column) == Some("1"))
+        .count();
+    assert_eq!(ones, frames_back);
+    // A learner with no check says nothing, and the figure is absent.
+    let plain = experiment::learn(scenario, models, recording, "scasm-paper").expect("paper");
+    assert!(plain.trace.iter().all(|r| r.falling_back.is_none()));
+    let figures = testbed::summary::Figures::of(&plain, (1.0, 1.0, 1.0));
+    assert!(figures.fallback_s.is_nan());
+    let json = serde_json::to_value(figures).expect("json");
+    assert!(json.get("fallback_s").is_none(), "{json}");
+}

@@ -74,4 +74,11 @@ pub trait CalibrationLearner {
     fn failure(&self) -> Option<&str> {
         None
     }
+    /// Whether the learner, by a check on itself, doubts its own current
+    /// models and reports older ones in their place (see
+    /// [`crate::Scasm::with_self_check`]); `None` for a learner that does not
+    /// check itself (the default).
+    fn falling_back(&self) -> Option<bool> {
+        None
+    }
 }

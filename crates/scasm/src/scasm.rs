@@ -197,12 +197,6 @@ impl Scasm {
         self.guard.as_ref().map_or(0, Guard::fallbacks)
     }
 
-    /// Whether the learner is reporting its last good models in place of
-    /// its own (see [`Scasm::with_self_check`]).
-    pub fn falling_back(&self) -> bool {
-        self.fallback().is_some()
-    }
-
     fn fallback(&self) -> Option<(Polynomial, Polynomial)> {
         self.guard.as_ref().and_then(Guard::fallback)
     }
@@ -406,6 +400,10 @@ impl CalibrationLearner for Scasm {
 
     fn x_s(&self) -> Option<f64> {
         self.x_s
+    }
+
+    fn falling_back(&self) -> Option<bool> {
+        self.guard.as_ref().map(|g| g.fallback().is_some())
     }
 }
 

@@ -50,7 +50,8 @@ fn in_a_clean_world_it_ends_with_the_couplings_own_models() {
     common::feed(&mut checked, &events_held((0.0, 0.0)));
     // Its models may fail for a moment as the commands reach new ground;
     // once they pass, they are reported as they are.
-    assert!(!checked.falling_back());
+    assert_eq!(checked.falling_back(), Some(false));
+    assert_eq!(plain.falling_back(), None, "no check, no answer");
     assert_eq!(plain.action_model(), checked.action_model());
     assert_eq!(plain.sensor_model(), checked.sensor_model());
     assert_eq!(plain.x_a(), checked.x_a(), "the coupling runs on unchanged");
@@ -81,7 +82,7 @@ fn a_robot_held_in_place_is_noticed_and_the_last_good_models_are_reported() {
             e_checked <= e_plain,
             "held from {from_s} s: {e_checked} > {e_plain}"
         );
-        if checked.falling_back() {
+        if checked.falling_back() == Some(true) {
             let (a, s) = (
                 checked.action_model().expect("a model"),
                 checked.sensor_model().expect("a model"),

@@ -132,19 +132,22 @@ fn cell(v: Option<f64>) -> String {
 }
 
 /// A trace, one row per camera frame:
-/// `t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm`
+/// `t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm,falling_back`
 /// (empty cells where there was no reading or no model; `x_loc` is the
 /// localiser's estimate with the learned models, in their units,
 /// `x_loc_true_mm` with the measured ones, `x_loc_a0` with A0 and the sensor
 /// model learned from it, `x_loc_best_mm` with the best polynomials of the
-/// learner's degrees through the measured models).
+/// learner's degrees through the measured models; `falling_back` is 1 where
+/// the learner, by its check on itself, reported older models in place of
+/// its own, 0 where not, empty for a learner with no such check).
 pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
     write_csv(
         path,
-        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm",
+        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm,\
+         falling_back",
         trace.iter().map(|r| {
             format!(
-                "{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.t_s,
                 r.command,
                 cell(r.obs_px),
@@ -155,7 +158,8 @@ pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
                 cell(r.x_loc_std),
                 cell(r.x_loc_true_mm),
                 cell(r.x_loc_a0),
-                cell(r.x_loc_best_mm)
+                cell(r.x_loc_best_mm),
+                cell(r.falling_back.map(|b| f64::from(u8::from(b))))
             )
         }),
     )

@@ -337,6 +337,9 @@ pub struct TraceRow {
     /// The localiser's estimate with the best polynomials of the learner's
     /// degrees through the measured models (the model class's floor), mm.
     pub x_loc_best_mm: Option<f64>,
+    /// Whether the learner, by its check on itself, was reporting older
+    /// models in place of its own (`None`: it has no such check).
+    pub falling_back: Option<bool>,
 }
 
 impl TraceRow {
@@ -354,6 +357,7 @@ impl TraceRow {
             x_loc_true_mm: None,
             x_loc_a0: None,
             x_loc_best_mm: None,
+            falling_back: learner.falling_back(),
         }
     }
 }

@@ -63,6 +63,10 @@ pub struct Aggregate {
     /// The `Ok` trials whose final models are worse than the uncalibrated
     /// start ([`Figures::worse_than_start`]): seed and figures.
     pub worse_than_start: Vec<(u64, Figures)>,
+    /// The `Ok` trials in which the learner, by its check on itself,
+    /// reported older models in place of its own for a while
+    /// ([`Figures::fallback_s`] above 0).
+    pub fell_back: usize,
 }
 
 impl Aggregate {
@@ -91,6 +95,10 @@ impl Aggregate {
                 .filter(|t| t.1.is_ok() && t.2.worse_than_start())
                 .map(|t| (t.0, t.2))
                 .collect(),
+            fell_back: trials
+                .iter()
+                .filter(|t| t.1.is_ok() && t.2.fallback_s > 0.0)
+                .count(),
         }
     }
 
@@ -102,7 +110,9 @@ impl Aggregate {
     /// "15 of 15 trials ok", or "13 of 15 trials ok; not in the means: seed 3
     /// (fell), seed 9 (no model)", and then, if any, "; 1 worse than the
     /// uncalibrated start (in the means): seed 4 (action 30.1 mm/s against
-    /// A0's 25.5)".
+    /// A0's 25.5)", and, for a learner that checks itself, "; fell back on
+    /// its last good models (self-check) in 3 trials, 4.2 s a trial on
+    /// average".
     pub fn describe(&self) -> String {
         let mut s = format!("{} of {} trials ok", self.ok(), self.trials);
         if !self.failed.is_empty() {
@@ -138,6 +148,13 @@ impl Aggregate {
                 "; {} worse than the uncalibrated start (in the means): {}",
                 self.worse_than_start.len(),
                 named.join(", ")
+            ));
+        }
+        if self.counted.fallback_s > 0.0 {
+            s.push_str(&format!(
+                "; fell back on its last good models (self-check) in {} of {} trials, {:.1} s a \
+                 trial on average",
+                self.fell_back, self.counted.fallback_s, self.mean.fallback_s
             ));
         }
         s
@@ -302,6 +319,7 @@ mod tests {
         Figures {
             action_rmse_mm_s: action,
             action_a0_rmse_mm_s: 100.0,
+            fallback_s: f64::NAN,
             ..Figures::filled(1.0)
         }
     }
@@ -347,6 +365,7 @@ mod tests {
                     action_a0_rmse_mm_s: 25.0,
                     sensor_start_rmse_mm: 300.0,
                     sensor_rmse_mm: 50.0,
+                    fallback_s: f64::NAN,
                     ..Figures::filled(1.0)
                 };
                 (100 + k, TrialStatus::Ok, f)
@@ -371,6 +390,22 @@ mod tests {
             text.contains(
                 "1 worse than the uncalibrated start (in the means): seed 9002 \
                  (action 130.0 mm/s against A0's 25.0, sensor 480.0 mm against the start's 300.0)"
+            ),
+            "{text}"
+        );
+        assert!(
+            !text.contains("self-check"),
+            "no learner here checks itself: {text}"
+        );
+        // A learner that checks itself, falling back in two trials of ten.
+        for (k, row) in rows.iter_mut().enumerate() {
+            row.2.fallback_s = if k < 2 { 3.0 } else { 0.0 };
+        }
+        let text = Aggregate::of(&rows).describe();
+        assert!(
+            text.ends_with(
+                "; fell back on its last good models (self-check) in 2 of 10 trials, 0.6 s a \
+                 trial on average"
             ),
             "{text}"
         );

@@ -103,6 +103,11 @@ figures! {
     x_s_rmse_mm,
     /// The learner's raw `x_a` alone, last 60 s, mm.
     x_a_rmse_mm,
+    /// Seconds of the trial in which the learner, doubting its own models by
+    /// its check on itself, reported older ones in their place; NaN, and
+    /// absent from JSON, for a learner with no such check.
+    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    fallback_s,
     /// The fields from here on say how the learner weathered the world's
     /// first change during the trial (see [`Recovery`]); NaN, and absent
     /// from JSON, if the world did not change. This one: the action model's
@@ -150,6 +155,24 @@ fn is_nan(v: &f64) -> bool {
 
 /// The window over which locations are judged: the last 60 s of a trial.
 pub const LOCATION_WINDOW_S: f64 = 60.0;
+
+/// Seconds of `trace` whose frames ended with the learner falling back (a
+/// frame lasts from the previous row's end to its own); NaN if the learner
+/// has no check on itself.
+fn fallback_s(trace: &[TraceRow]) -> f64 {
+    if trace.iter().all(|r| r.falling_back.is_none()) {
+        return f64::NAN;
+    }
+    let mut start_s = 0.0;
+    let mut total = 0.0;
+    for r in trace {
+        if r.falling_back == Some(true) {
+            total += r.t_s - start_s;
+        }
+        start_s = r.t_s;
+    }
+    total
+}
 
 /// Location RMSE of `estimate` over `rows` after the best affine map to the
 /// true distance (NaN if fewer than three rows have an estimate).
@@ -203,6 +226,7 @@ impl Figures {
             floor_bob_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.bob_mm),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
+            fallback_s: fallback_s(&outcome.trace),
             ..Self::recovery_of(outcome, Self::localisation_of(outcome))
         }
     }
