@@ -1,9 +1,9 @@
 //! A SCASM learner's check on itself, from nothing but its own models and the
 //! inputs it has seen: each model must still be monotone over the inputs it
 //! is used on (the command range for A, the readings seen for S), as a walk's
-//! response and a camera's reading of a beacon are. A coupling whose model has turned back on
-//! itself has learned something false; until it passes again, the learner
-//! reports the last models that passed instead.
+//! response and a camera's reading of a beacon are. A coupling whose model
+//! has turned back on itself has learned something false; until it passes
+//! again, the learner reports the last models that passed instead.
 
 use crate::polynomial::Polynomial;
 
@@ -19,8 +19,8 @@ pub const TURN_TOLERANCE: f64 = 0.01;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct SelfCheck {
-    /// How long (s) a state must pass the check, reading after reading,
-    /// before a restart may go back to it.
+    /// How long (s) models must pass the check, reading after reading,
+    /// before the learner may fall back on them.
     pub good_after_s: f64,
 }
 
@@ -45,25 +45,25 @@ impl Span {
     }
 }
 
-/// How far `model` turns back on itself over `span`: the largest move against
-/// its overall direction (end against start) between two checked points, as a
-/// fraction of its values' range there. 0 for a monotone model; 1 or more for
-/// one that is not finite or whose range is empty.
+/// How far `model` turns back on itself over `lo..=hi`: the largest move
+/// against its overall direction (end against start) between two checked
+/// points, as a fraction of its values' range there. 0 for a monotone model,
+/// a constant one or an empty range; infinite for one that is not finite
+/// there.
 pub fn turn_back(model: &Polynomial, lo: f64, hi: f64) -> f64 {
-    let span = Span { lo, hi };
-    if span.hi <= span.lo {
+    if hi <= lo {
         return 0.0;
     }
     let at = |i: usize| {
         let u = i as f64 / (CHECK_POINTS - 1) as f64;
-        model.eval(span.lo + u * (span.hi - span.lo))
+        model.eval(lo + u * (hi - lo))
     };
     let sign = if at(CHECK_POINTS - 1) >= at(0) {
         1.0
     } else {
         -1.0
     };
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let (mut least, mut most) = (f64::INFINITY, f64::NEG_INFINITY);
     // The furthest the model has gone in its direction so far, and the
     // largest fall behind it.
     let (mut best, mut worst_fall) = (f64::NEG_INFINITY, 0.0_f64);
@@ -72,12 +72,16 @@ pub fn turn_back(model: &Polynomial, lo: f64, hi: f64) -> f64 {
         if !v.is_finite() {
             return f64::INFINITY;
         }
-        lo = lo.min(v);
-        hi = hi.max(v);
+        least = least.min(v);
+        most = most.max(v);
         best = best.max(sign * v);
         worst_fall = worst_fall.max(best - sign * v);
     }
-    if hi > lo { worst_fall / (hi - lo) } else { 0.0 }
+    if most > least {
+        worst_fall / (most - least)
+    } else {
+        0.0
+    }
 }
 
 /// A pair of models: the action model, then the sensor model.
@@ -132,7 +136,7 @@ impl Guard {
         );
     }
 
-    /// Whether both models are monotone over the inputs seen.
+    /// Whether both models are monotone over their inputs.
     fn passes(&self, (action, sensor): &Models) -> bool {
         let ok = |m: &Polynomial, span: Option<Span>| {
             span.is_none_or(|s| turn_back(m, s.lo, s.hi) <= TURN_TOLERANCE)
