@@ -166,9 +166,9 @@ impl Scasm {
     /// monotone over their inputs: A over the command range
     /// (`±command_scale`, and any command seen beyond it), S over the
     /// readings seen so far, within [`crate::self_check::TURN_TOLERANCE`]
-    /// of their values' range. A walk's response and
-    /// a camera's reading of a beacon are; a coupling whose model has turned
-    /// back on itself has learned something false. From a failed check until
+    /// of their values' range. A walk's response and a camera's reading of a
+    /// beacon are; a coupling whose model has turned back on itself has
+    /// learned something false. From a failed check until
     /// the next pass, the learner reports the last models that passed every
     /// check for `good_after_s` (if they pass over the inputs seen by then)
     /// instead of its own; the coupling itself runs on unchanged, and
@@ -423,11 +423,18 @@ pub mod declarations {
     /// The shared settings every variant reads.
     const COMMON: [&str; 5] = ["gamma", "beta", "t_start", "sensor_degree", "action_degree"];
 
-    fn build(config: ScasmConfig, mode: Mode) -> Result<BoxedLearner, std::string::String> {
+    /// A variant with `config`, checking itself if `check` is given.
+    fn build(
+        config: ScasmConfig,
+        mode: Mode,
+        check: Option<SelfCheck>,
+    ) -> Result<BoxedLearner, std::string::String> {
         let params = config.validate().map_err(|e| e.to_string())?;
-        Ok(Box::new(
-            Scasm::new(params, mode).map_err(|e| e.to_string())?,
-        ))
+        let learner = match check {
+            Some(check) => Scasm::with_self_check(params, mode, check),
+            None => Scasm::new(params, mode),
+        };
+        Ok(Box::new(learner.map_err(|e| e.to_string())?))
     }
 
     /// The self-check's settings (see [`Scasm::with_self_check`]).
@@ -456,16 +463,10 @@ pub mod declarations {
         config: ScasmConfig,
         c: &BuildContext,
     ) -> Result<BoxedLearner, std::string::String> {
-        if c.own.count("self_check") == 0 {
-            return build(config, c.mode);
-        }
-        let params = config.validate().map_err(|e| e.to_string())?;
-        let check = SelfCheck {
+        let check = (c.own.count("self_check") == 1).then(|| SelfCheck {
             good_after_s: c.own.get("good_after_s"),
-        };
-        Ok(Box::new(
-            Scasm::with_self_check(params, c.mode, check).map_err(|e| e.to_string())?,
-        ))
+        });
+        build(config, c.mode, check)
     }
 
     /// The paper's algorithm exactly.
@@ -482,6 +483,7 @@ pub mod declarations {
                     ..c.shared
                 },
                 c.mode,
+                None,
             )
         },
     };
