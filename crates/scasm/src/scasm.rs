@@ -165,7 +165,8 @@ impl Scasm {
     /// learned action model, each reading checks that both models are still
     /// monotone over their inputs: A over the command range
     /// (`±command_scale`, and any command seen beyond it), S over the
-    /// readings seen so far, within [`crate::self_check::TURN_TOLERANCE`]
+    /// readings of its fit's points so far (each the mean of
+    /// `sensor_window` readings), within [`crate::self_check::TURN_TOLERANCE`]
     /// of their values' range. A walk's response and a camera's reading of a
     /// beacon are; a coupling whose model has turned back on itself has
     /// learned something false. From a failed check until
@@ -292,7 +293,7 @@ impl Scasm {
                     }
                 }
                 self.learn_sensor(obs_px);
-                self.check_self(t_s, obs_px);
+                self.check_self(t_s);
             }
             Mode::SensorFromConstantAction | Mode::SensorFromAction(_) => {
                 self.learn_sensor(obs_px);
@@ -308,11 +309,10 @@ impl Scasm {
     }
 
     /// The self-check after a reading at `t_s` (see [`Scasm::with_self_check`]).
-    fn check_self(&mut self, t_s: f64, obs_px: f64) {
+    fn check_self(&mut self, t_s: f64) {
         let models = self.action_model.zip(self.sensor_model);
         let in_use = t_s >= 2.0 * self.params.t_start_s();
         if let Some(guard) = &mut self.guard {
-            guard.saw_reading(obs_px);
             if let (true, Some(models)) = (in_use, models) {
                 guard.check(t_s, models);
             }
@@ -348,6 +348,11 @@ impl Scasm {
         if w.count >= self.params.sensor_window() {
             let n = w.count as f64;
             self.sensor_fit.add(w.obs_sum / n, w.x_a_sum / n);
+            // S is checked over the readings it is fitted to: the points'
+            // (a noisy camera's single extremes would raise false alarms).
+            if let Some(guard) = &mut self.guard {
+                guard.saw_reading(w.obs_sum / n);
+            }
             self.window = ReadingWindow::default();
             self.sensor_model = self.sensor_fit.sensor_model();
         }
@@ -446,7 +451,7 @@ pub mod declarations {
                 1.0,
                 (0.0, false, 1.0),
                 "1: while a model is not monotone over its inputs (A over the command range, S \
-                 over the readings seen), report the last good models instead; 0: unchecked",
+                 over its fit's readings), report the last good models instead; 0: unchecked",
             ),
             Setting::new(
                 "good_after_s",
