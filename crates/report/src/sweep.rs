@@ -79,10 +79,11 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         p90.sensor_rmse_mm,
         g.mean.consistency
     );
+    let constants = scasm::ScasmConfig::paper();
     let paper = [
-        ("learner.gamma", 0.999),
-        ("learner.beta", 1.0 / 30.0),
-        ("learner.t_start", 20.0),
+        ("learner.gamma", constants.gamma),
+        ("learner.beta", constants.beta),
+        ("learner.t_start", constants.t_start_s),
     ];
     // Only a sweep over one of the paper's constants has them to compare.
     if !results
@@ -100,9 +101,19 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
             })
         })
     };
+    // To four decimals, without trailing zeros (beta 1/30 as 0.0333).
+    let short = |v: f64| {
+        let s = format!("{v:.4}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    let named: Vec<String> = paper
+        .iter()
+        .map(|(k, v)| format!("{k}={}", short(*v)))
+        .collect();
     let _ = write!(
         out,
-        "paper's constants, the first values it tried (learner.gamma=0.999, learner.beta=0.0333, learner.t_start=20)"
+        "paper's constants, the first values it tried ({})",
+        named.join(", ")
     );
     // Writing to a String cannot fail.
     let _ = match results

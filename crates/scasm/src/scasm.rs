@@ -310,12 +310,12 @@ impl Scasm {
 
     /// The self-check after a reading at `t_s` (see [`Scasm::with_self_check`]).
     fn check_self(&mut self, t_s: f64) {
+        if t_s < 2.0 * self.params.t_start_s() {
+            return;
+        }
         let models = self.action_model.zip(self.sensor_model);
-        let in_use = t_s >= 2.0 * self.params.t_start_s();
-        if let Some(guard) = &mut self.guard {
-            if let (true, Some(models)) = (in_use, models) {
-                guard.check(t_s, models);
-            }
+        if let (Some(guard), Some(models)) = (&mut self.guard, models) {
+            guard.check(t_s, models);
         }
     }
 

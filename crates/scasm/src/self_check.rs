@@ -1,9 +1,10 @@
 //! A SCASM learner's check on itself, from nothing but its own models and the
 //! inputs it has seen: each model must still be monotone over the inputs it
-//! is used on (the command range for A, the readings seen for S), as a walk's
-//! response and a camera's reading of a beacon are. A coupling whose model
-//! has turned back on itself has learned something false; until it passes
-//! again, the learner reports the last models that passed instead.
+//! is used on (the command range for A, the readings of its fit's points for
+//! S), as a walk's response and a camera's reading of a beacon are. A
+//! coupling whose model has turned back on itself has learned something
+//! false; until it passes again, the learner reports the last models that
+//! passed instead.
 
 use crate::polynomial::Polynomial;
 
@@ -129,6 +130,7 @@ impl Guard {
         );
     }
 
+    /// A reading S is fitted to (a point of its fit, the mean of a window).
     pub(crate) fn saw_reading(&mut self, obs_px: f64) {
         self.readings = Some(
             self.readings
