@@ -190,7 +190,7 @@ fn main() -> Result<()> {
     write_outputs(&results, &args.out)?;
     print!(
         "{}",
-        report::sweep::describe(&results, velocity_range.unwrap_or(600.0))
+        report::sweep::describe(&results, velocity_range.unwrap_or(600.0), &base.learner)
     );
     println!("results in {}", args.out.display());
     Ok(())

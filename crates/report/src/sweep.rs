@@ -24,8 +24,10 @@ pub fn best(results: &Results, velocity_range: f64) -> Option<CombinationSummary
 }
 
 /// What the console shows of a sweep: the runs not ok, those worse than
-/// their start, the best combination and the paper's constants.
-pub fn describe(results: &Results, velocity_range: f64) -> String {
+/// their start, the best combination and the paper's constants. `base` is
+/// the learner settings of the sweep's base scenario (the values of the
+/// settings no axis sweeps).
+pub fn describe(results: &Results, velocity_range: f64, base: &scasm::ScasmConfig) -> String {
     let mut out = String::new();
     let Some(g) = best(results, velocity_range) else {
         return "no combination finished with both models learned\n".into();
@@ -80,11 +82,13 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
         g.mean.consistency
     );
     let constants = scasm::ScasmConfig::paper();
+    // Each constant: the paper's value, and the base scenario's.
     let paper = [
-        ("learner.gamma", constants.gamma),
-        ("learner.beta", constants.beta),
-        ("learner.t_start", constants.t_start_s),
+        ("learner.gamma", constants.gamma, base.gamma),
+        ("learner.beta", constants.beta, base.beta),
+        ("learner.t_start", constants.t_start_s, base.t_start_s),
     ];
+    let near = |x: f64, paper: f64| (x - paper).abs() <= 1e-3 * paper;
     // Only a sweep over one of the paper's constants has them to compare.
     if !results
         .keys()
@@ -93,13 +97,14 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
     {
         return out;
     }
+    // A combination is the paper's when every constant is, swept or not.
     let is_paper = |g: &CombinationSummary| {
-        g.settings.iter().all(|(k, v)| {
-            paper.iter().find(|p| p.0 == k).is_none_or(|p| {
-                v.parse::<f64>()
-                    .is_ok_and(|x| (x - p.1).abs() <= 1e-3 * p.1)
-            })
-        })
+        paper.iter().all(
+            |&(key, value, in_base)| match g.settings.iter().find(|(k, _)| k == key) {
+                Some((_, v)) => v.parse::<f64>().is_ok_and(|x| near(x, value)),
+                None => near(in_base, value),
+            },
+        )
     };
     // To four decimals, without trailing zeros (beta 1/30 as 0.0333).
     let short = |v: f64| {
@@ -108,7 +113,7 @@ pub fn describe(results: &Results, velocity_range: f64) -> String {
     };
     let named: Vec<String> = paper
         .iter()
-        .map(|(k, v)| format!("{k}={}", short(*v)))
+        .map(|(k, v, _)| format!("{k}={}", short(*v)))
         .collect();
     let _ = write!(
         out,
