@@ -76,7 +76,7 @@ class Learner:
     :meth:`configure`: ``self.own`` (its own settings by key) and
     ``self.shared`` (``gamma``, ``beta``, ``t_start``, ``sensor_degree``,
     ``action_degree``, ``sensor_window``, ``forward_degree``,
-    ``command_scale``)."""
+    ``action_prior``, ``command_scale``)."""
 
     name = "python-learner"
     about = ""

@@ -205,7 +205,7 @@ const MAX_DEGREE: f64 = crate::MAX_REGRESSORS as f64;
 
 /// The settings several learners share, as `learner.<key>`: SCASM's
 /// hyper-parameters, which the batch learner's online start reads too.
-pub const SHARED: [SharedSetting; 7] = [
+pub const SHARED: [SharedSetting; 8] = [
     SharedSetting {
         key: "gamma",
         kind: Kind::Number,
@@ -261,6 +261,15 @@ pub const SHARED: [SharedSetting; 7] = [
         doc: "degree of the forward sensor model obs ~ g(x) a batch learner fits",
         get: |c| c.forward_degree as f64,
         set: |c, v| c.forward_degree = v as usize,
+    },
+    SharedSetting {
+        key: "action_prior",
+        kind: Kind::Number,
+        range: (0.0, false, f64::INFINITY),
+        doc: "strength k of the prior that A is nearly linear: its coefficients of degree >= 2 \
+              (commands / command_scale) ~ N(0, (command_scale / k)^2); 0: none (the paper's)",
+        get: |c| c.action_prior,
+        set: |c, v| c.action_prior = v,
     },
 ];
 

@@ -38,6 +38,12 @@ pub enum ConfigError {
         /// The largest degree supported.
         max: usize,
     },
+    /// The action fit's prior strength is negative or not finite.
+    #[error("learner.action_prior must be finite and at least 0 (0: no prior), got {action_prior}")]
+    ActionPrior {
+        /// The value given.
+        action_prior: f64,
+    },
     /// The sensor fit's reading window is out of range.
     #[error("learner.sensor_window must be in 1..={max}, got {window}")]
     SensorWindow {

@@ -135,7 +135,8 @@ proptest! {
 }
 
 /// Drives an ActionFit along `segments` (command, steps) with an observation after
-/// each step of a made-up location, and compares its A with the batch solution.
+/// each step of a made-up location, and compares its A (least squares: no
+/// prior) with the batch solution.
 fn check_action_fit(
     degree: usize,
     gamma: f64,
@@ -146,7 +147,7 @@ fn check_action_fit(
 ) -> Result<(), TestCaseError> {
     prop_assume!(distinct(segments.iter().map(|s| s.0)) > degree + 1);
     let truth = |c: f64| 1.1 * c - 2e-4 * c * c + 4e-6 * c * c * c;
-    let mut fit = ActionFit::new(degree, gamma, 300.0);
+    let mut fit = ActionFit::new(degree, gamma, 300.0, 0.0);
     let mut v = vec![0.0; degree + 1];
     let (mut rows, mut y) = (Vec::new(), Vec::new());
     let mut x = 2000.0;

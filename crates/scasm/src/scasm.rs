@@ -150,6 +150,7 @@ impl Scasm {
                 params.action_degree(),
                 params.gamma(),
                 params.command_scale(),
+                params.action_prior(),
             ),
             sensor_model: None,
             action_model: None,
@@ -369,12 +370,14 @@ fn finite(field: &'static str, value: f64) -> Result<(), EventError> {
 
 impl CalibrationLearner for Scasm {
     /// The variant its settings make it: `scasm-eiv` (noise-corrected sensor
-    /// fit), `scasm-paper` (every reading its own point) or `scasm`.
+    /// fit), `scasm-paper` (every reading its own point, A by least squares)
+    /// or `scasm`.
     fn name(&self) -> &str {
-        match (self.params.sensor_fit(), self.params.sensor_window()) {
+        let paper = self.params.sensor_window() == 1 && self.params.action_prior() == 0.0;
+        match (self.params.sensor_fit(), paper) {
             (SensorFit::Corrected, _) => "scasm-eiv",
-            (SensorFit::Inverse, 1) => "scasm-paper",
-            (SensorFit::Inverse, _) => "scasm",
+            (SensorFit::Inverse, true) => "scasm-paper",
+            (SensorFit::Inverse, false) => "scasm",
         }
     }
 
@@ -485,6 +488,7 @@ pub mod declarations {
             build(
                 ScasmConfig {
                     sensor_window: 1,
+                    action_prior: 0.0,
                     ..c.shared
                 },
                 c.mode,
@@ -505,6 +509,7 @@ pub mod declarations {
             "sensor_degree",
             "action_degree",
             "sensor_window",
+            "action_prior",
         ],
         settings: checked_settings,
         one_sided: true,

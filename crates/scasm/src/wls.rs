@@ -77,23 +77,39 @@ impl IncrementalWls {
                 }
             }
         }
-        for j in 0..m {
-            let (a, b) = (self.r[j][j], row[j]);
-            if b == 0.0 {
-                continue;
-            }
-            let h = libm::sqrt(a * a + b * b);
-            let inv_h = 1.0 / h;
-            let (c, s) = (a * inv_h, b * inv_h);
-            self.r[j][j] = h;
-            row[j] = 0.0;
-            for (r, z) in self.r[j][j + 1..m].iter_mut().zip(&mut row[j + 1..m]) {
-                let (rk, zk) = (*r, *z);
-                *r = c * rk + s * zk;
-                *z = c * zk - s * rk;
+        rotate_in(&mut self.r, &mut row, m);
+        self.points += 1;
+    }
+
+    /// The forgetting-weighted number of points, `sum_k gamma^k`.
+    pub(crate) fn weight(&self) -> f64 {
+        let g = self.sqrt_gamma * self.sqrt_gamma;
+        if g == 1.0 {
+            self.points as f64
+        } else {
+            (1.0 - libm::pow(g, self.points as f64)) / (1.0 - g)
+        }
+    }
+
+    /// The weighted residual sum of squares of the fit.
+    pub(crate) fn residual_ss(&self) -> f64 {
+        let n = self.regressors + 1;
+        self.r[n][n] * self.r[n][n]
+    }
+
+    /// The solution with pseudo-observations `beta_j = 0` of weight
+    /// `ridge[j]` (index 0 is the intercept), or `None` as [`Self::solve`].
+    pub(crate) fn solve_with_ridge(&self, ridge: &[f64]) -> Option<[f64; MAX_COLS]> {
+        let mut with = self.clone();
+        let m = self.cols();
+        for (j, &w) in ridge.iter().enumerate().take(self.regressors + 1) {
+            if w > 0.0 {
+                let mut row = [0.0; MAX_COLS];
+                row[j] = w;
+                rotate_in(&mut with.r, &mut row, m);
             }
         }
-        self.points += 1;
+        with.solve()
     }
 
     /// Applies the change of regressors `z' = T z` to everything seen so far, where
@@ -135,6 +151,26 @@ impl IncrementalWls {
     }
 }
 
+/// Rotates `row` (over the first `m` columns) into the triangular factor `r`.
+fn rotate_in(r: &mut Square, row: &mut [f64; MAX_COLS], m: usize) {
+    for j in 0..m {
+        let (a, b) = (r[j][j], row[j]);
+        if b == 0.0 {
+            continue;
+        }
+        let h = libm::sqrt(a * a + b * b);
+        let inv_h = 1.0 / h;
+        let (c, s) = (a * inv_h, b * inv_h);
+        r[j][j] = h;
+        row[j] = 0.0;
+        for (rk, zk) in r[j][j + 1..m].iter_mut().zip(&mut row[j + 1..m]) {
+            let (a, b) = (*rk, *zk);
+            *rk = c * a + s * b;
+            *zk = c * b - s * a;
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -165,6 +201,34 @@ mod tests {
         assert!(f.solve().is_none());
         f.add(&[3.0, 9.0], 5.0);
         assert!(f.solve().is_some());
+    }
+
+    #[test]
+    fn a_ridge_of_zero_is_the_plain_fit_and_a_heavy_one_removes_its_column() {
+        let mut f = IncrementalWls::new(2, 0.99);
+        for k in 0..30 {
+            let x = f64::from(k) * 0.3;
+            f.add(
+                &[x, x * x],
+                1.0 + 2.0 * x + 0.5 * x * x + libm::sin(x * 7.0),
+            );
+        }
+        let plain = f.solve().expect("determined");
+        let zero = f.solve_with_ridge(&[0.0, 0.0, 0.0]).expect("determined");
+        assert_eq!(plain[..3], zero[..3]);
+        // A heavy pseudo-observation beta_2 = 0 gives the fit without x^2.
+        let heavy = f.solve_with_ridge(&[0.0, 0.0, 1e9]).expect("determined");
+        let mut line = IncrementalWls::new(1, 0.99);
+        for k in 0..30 {
+            let x = f64::from(k) * 0.3;
+            line.add(&[x], 1.0 + 2.0 * x + 0.5 * x * x + libm::sin(x * 7.0));
+        }
+        let line = line.solve().expect("determined");
+        assert!(heavy[2].abs() < 1e-6, "{}", heavy[2]);
+        assert!((heavy[0] - line[0]).abs() < 1e-6 && (heavy[1] - line[1]).abs() < 1e-6);
+        // The weighted count and residual describe the same data.
+        assert!((f.weight() - (1.0 - 0.99f64.powi(30)) / 0.01).abs() < 1e-9);
+        assert!(f.residual_ss() > 0.0);
     }
 
     #[test]

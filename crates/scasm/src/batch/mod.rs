@@ -98,6 +98,7 @@ const BATCH_SHARED: &[&str] = &[
     "action_degree",
     "sensor_window",
     "forward_degree",
+    "action_prior",
 ];
 
 /// The batch learner as a host declares it (see [`crate::declaration`]): its
