@@ -104,9 +104,17 @@ for _ in $(seq 60); do
     sleep 0.5
 done
 echo "task ${array}_2 ended $(state "${array}_2")"
-scontrol requeue "${array}_2"
-scontrol update jobid="${array}_2" StartTime=now
-wait_job "$array" 300
+# slurmd refuses to launch a job it has only just seen killed ("Job N already
+# killed, do not launch batch job"), and the controller then marks it FAILED
+# without running it: give it a moment, and requeue again if that happened.
+for attempt in 1 2 3; do
+    sleep 2
+    scontrol requeue "${array}_2"
+    scontrol update jobid="${array}_2" StartTime=now
+    wait_job "$array" 300
+    [ "$(state "${array}_2")" = COMPLETED ] && break
+    echo "requeue $attempt: task ${array}_2 ended $(state "${array}_2")"
+done
 [ "$(state "${array}_2")" = COMPLETED ] || fail "the requeued task ended $(state "${array}_2")"
 grep -q "already done" "$work/long/logs/shard-2.out" || fail "the requeued task did not report a resume"
 grep "already done" "$work/long/logs/shard-2.out"
