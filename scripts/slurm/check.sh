@@ -58,6 +58,24 @@ print(f"{sys.argv[2]}: the same {len(a) - 1} rows as {sys.argv[1]} (but for real
 PY
 }
 rows() { echo $(($(wc -l < "$1") - 1)); }
+# Requeues array task $1 (whose log is $2) and waits until it has run. slurmd
+# refuses to launch a job it has only just seen end ("Job N already killed,
+# do not launch batch job"), and the controller then marks it FAILED without
+# running it, so no log is written: the log is removed first, and the task
+# requeued again (at most 3 times) while none appears.
+requeue_task() {
+    local task=$1 log=$2 attempt
+    for attempt in 1 2 3; do
+        rm -f "$log"
+        sleep 2
+        scontrol requeue "$task"
+        scontrol update jobid="$task" StartTime=now
+        wait_job "${task%%_*}" 300
+        [ -f "$log" ] && return 0
+        echo "requeue $attempt: task $task ended $(state "$task") without running"
+    done
+    fail "task $task did not run after 3 requeues"
+}
 
 # Runs KIND (sweep or benchmark) with FLAGS unsharded, and through submit.sh
 # as an array of TASKS and the merge into $work/NAME; checks that the merged
@@ -104,17 +122,7 @@ for _ in $(seq 60); do
     sleep 0.5
 done
 echo "task ${array}_2 ended $(state "${array}_2")"
-# slurmd refuses to launch a job it has only just seen killed ("Job N already
-# killed, do not launch batch job"), and the controller then marks it FAILED
-# without running it: give it a moment, and requeue again if that happened.
-for attempt in 1 2 3; do
-    sleep 2
-    scontrol requeue "${array}_2"
-    scontrol update jobid="${array}_2" StartTime=now
-    wait_job "$array" 300
-    [ "$(state "${array}_2")" = COMPLETED ] && break
-    echo "requeue $attempt: task ${array}_2 ended $(state "${array}_2")"
-done
+requeue_task "${array}_2" "$work/long/logs/shard-2.out"
 [ "$(state "${array}_2")" = COMPLETED ] || fail "the requeued task ended $(state "${array}_2")"
 grep -q "already done" "$work/long/logs/shard-2.out" || fail "the requeued task did not report a resume"
 grep "already done" "$work/long/logs/shard-2.out"
@@ -124,9 +132,7 @@ same_rows "$work/long-unsharded/sweep.csv" "$work/long/sweep.csv"
 
 echo "== 3. a task whose sweep.csv is truncated is refused, naming the file"
 truncate -s -9 "$csv"
-scontrol requeue "${array}_2"
-scontrol update jobid="${array}_2" StartTime=now
-wait_job "$array" 120
+requeue_task "${array}_2" "$work/long/logs/shard-2.out"
 [ "$(state "${array}_2")" = FAILED ] || fail "the task with a truncated sweep.csv ended $(state "${array}_2")"
 grep -F "$csv" "$work/long/logs/shard-2.out" || fail "the error does not name $csv: $(cat "$work/long/logs/shard-2.out")"
 
