@@ -42,7 +42,6 @@ pub fn results_table(
             d = decimals
         )
     };
-    let floor = |learned: f64, floor: f64| format!("{floor:.1} ({:.2}x)", learned / floor);
     let ratio = |a: f64, best_a: f64, b: f64, best_b: f64| {
         format!("{:.2}x / {:.2}x", a / best_a, b / best_b)
     };
@@ -63,7 +62,7 @@ pub fn results_table(
             ),
             format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
             pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
-            floor(mean.action_rmse_mm_s, mean.action_crb_rmse_mm_s),
+            testbed::floor::cell(mean.action_rmse_mm_s, mean.action_crb_rmse_mm_s),
             pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
         ],
         vec![
@@ -82,7 +81,7 @@ pub fn results_table(
             ),
             format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
             pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
-            floor(mean.sensor_rmse_mm, mean.sensor_crb_rmse_mm),
+            testbed::floor::cell(mean.sensor_rmse_mm, mean.sensor_crb_rmse_mm),
             "-".into(),
         ],
         vec![

@@ -233,7 +233,6 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     get(&a.p90)
                 )
             };
-            let floor = |learned: f64, floor: f64| format!("{floor:.1} ({:.2}x)", learned / floor);
             vec![
                 c.scenario.clone(),
                 c.learner.clone(),
@@ -244,7 +243,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.action_ratio(),
                     c.action_ratio_of(&a.median)
                 ),
-                floor(m.action_rmse_mm_s, m.action_crb_rmse_mm_s),
+                crate::floor::cell(m.action_rmse_mm_s, m.action_crb_rmse_mm_s),
                 format!("{:.1} +- {:.1}", m.sensor_rmse_mm, s.sensor_rmse_mm),
                 tail(|f| f.sensor_rmse_mm),
                 format!(
@@ -252,7 +251,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.sensor_ratio(),
                     c.sensor_ratio_of(&a.median)
                 ),
-                floor(m.sensor_rmse_mm, m.sensor_crb_rmse_mm),
+                crate::floor::cell(m.sensor_rmse_mm, m.sensor_crb_rmse_mm),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
                 format!("{}/{}", a.worse_than_start.len(), a.ok()),
                 format!("{}/{}", a.ok(), a.trials),
