@@ -223,6 +223,7 @@ impl RobotDescription {
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
         let root_link = check_tree(&urdf)?;
+        let urdf = crate::point_mass::fold_point_masses(&urdf);
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;
@@ -253,9 +254,22 @@ impl RobotDescription {
                 .iter()
                 .all(|v| v.is_finite() && *v > 0.0)
             {
+                // A point mass fixed to a link was folded into it above.
+                let point = [i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz] == [0.0; 6];
                 return Err(RobotError::BadInertia {
                     link: link.name.clone(),
-                    reason: format!("principal inertia ({}, {}, {})", i.ixx, i.iyy, i.izz),
+                    reason: format!(
+                        "principal inertia ({}, {}, {}){}",
+                        i.ixx,
+                        i.iyy,
+                        i.izz,
+                        if point {
+                            ": a point mass is taken only on a fixed joint, folded into the \
+                             link it rides on; one that moves needs its moments"
+                        } else {
+                            ""
+                        }
+                    ),
                 });
             }
             total_mass_kg += m;
@@ -266,10 +280,13 @@ impl RobotDescription {
                 reason: "the robot has no mass".into(),
             });
         }
+        // Every collision shape is simulated or the robot is refused: none
+        // is dropped. (Loaded first: a foot may be a mesh.)
+        let meshes = crate::mesh::load(&urdf, dir)?;
         let legs = LEG_NAMES
             .iter()
             .zip(&map.legs)
-            .map(|(&name, joints)| check_leg(&urdf, &root_link, name, joints))
+            .map(|(&name, joints)| check_leg(&urdf, &meshes, &root_link, name, joints))
             .collect::<Result<Vec<_>, _>>()?;
         let camera = map.camera.clone();
         if !urdf.links.iter().any(|l| l.name == camera.parent) {
@@ -282,9 +299,6 @@ impl RobotDescription {
                 reason: format!("mount {:?} {:?} is not finite", camera.xyz, camera.rpy),
             });
         }
-        // Every collision shape is simulated or the robot is refused: none
-        // is dropped.
-        let meshes = crate::mesh::load(&urdf, dir)?;
         Ok(Self {
             urdf,
             root_link,
@@ -413,6 +427,7 @@ const AXIS_TOLERANCE: f64 = 1e-4;
 
 fn check_leg(
     urdf: &Robot,
+    meshes: &[crate::mesh::MeshCollision],
     root: &str,
     name: &'static str,
     names: &[String; 3],
@@ -547,8 +562,9 @@ fn check_leg(
         .ok_or_else(|| RobotError::MissingLink {
             link: shank_link.clone(),
         })?;
-    let (foot, foot_radius_m) =
-        find_foot(urdf, shank, [0.0; 3], turn).ok_or_else(|| RobotError::MissingFoot {
+    let (foot, foot_radius_m) = find_foot(urdf, shank, [0.0; 3], turn)
+        .or_else(|| foot_link(urdf, meshes, shank, turn))
+        .ok_or_else(|| RobotError::MissingFoot {
             link: shank_link.clone(),
         })?;
     // A direction in the leg's plane from straight down, positive backwards
@@ -590,10 +606,10 @@ fn check_leg(
 }
 
 /// A 3 x 3 rotation matrix, row-major.
-type Rotation = [[f64; 3]; 3];
+pub(crate) type Rotation = [[f64; 3]; 3];
 
 /// URDF's roll-pitch-yaw (fixed axes x, y, z): `Rz(yaw) Ry(pitch) Rx(roll)`.
-fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
+pub(crate) fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
     let (sr, cr, sp, cp, sy, cy) = (r.sin(), r.cos(), p.sin(), p.cos(), y.sin(), y.cos());
     [
         [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
@@ -602,7 +618,7 @@ fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
     ]
 }
 
-fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
+pub(crate) fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
 }
 
@@ -655,6 +671,129 @@ fn find_foot(
                 find_foot(urdf, child, place(j.origin.xyz.0), turn)
             })
     })
+}
+
+/// A foot that is not a sphere: the link fixed below `shank` (a toe or foot
+/// link, as Unitree's Go2 and ODRI's Solo 12 have, with a mesh, box,
+/// cylinder or capsule) whose shapes' centre is farthest from the knee,
+/// taken as the sphere inside its shapes' bounds: centred on the bounds,
+/// with half their smallest extent as radius (a ball's hull gives the ball).
+/// In the frame where `shank` sits at the origin turned by `turn`.
+fn foot_link(
+    urdf: &Robot,
+    meshes: &[crate::mesh::MeshCollision],
+    shank: &urdf_rs::Link,
+    turn: Rotation,
+) -> Option<([f64; 3], f64)> {
+    // Every link fixed below the shank, with where it sits and how it turns.
+    let below: Vec<(usize, [f64; 3], Rotation)> = fixed_to(urdf, &shank.name)
+        .into_iter()
+        .skip(1)
+        .map(|(k, at, own)| (k, rotate(&turn, at), compose(&turn, &own)))
+        .collect();
+    let mut best: Option<([f64; 3], f64, f64)> = None;
+    for (k, at, turn) in below {
+        let corners = shape_corners(&urdf.links[k], k, meshes);
+        if corners.is_empty() {
+            continue;
+        }
+        let placed: Vec<[f64; 3]> = corners
+            .iter()
+            .map(|&v| {
+                let r = rotate(&turn, v);
+                [at[0] + r[0], at[1] + r[1], at[2] + r[2]]
+            })
+            .collect();
+        let lo = [0, 1, 2].map(|i| placed.iter().map(|p| p[i]).fold(f64::INFINITY, f64::min));
+        let hi = [0, 1, 2].map(|i| {
+            placed
+                .iter()
+                .map(|p| p[i])
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        let centre = [0, 1, 2].map(|i| 0.5 * (lo[i] + hi[i]));
+        let radius = (0..3)
+            .map(|i| 0.5 * (hi[i] - lo[i]))
+            .fold(f64::INFINITY, f64::min);
+        let reach = centre.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if radius > 0.0 && radius.is_finite() && best.is_none_or(|b| reach > b.2) {
+            best = Some((centre, radius, reach));
+        }
+    }
+    best.map(|(centre, radius, _)| (centre, radius))
+}
+
+/// The link `name` and every link fixed below it (by fixed joints, to any
+/// depth): each link's index, with where its frame sits and how it turns in
+/// `name`'s frame; `name` first, at the origin, unturned.
+pub(crate) fn fixed_to(urdf: &Robot, name: &str) -> Vec<(usize, [f64; 3], Rotation)> {
+    let Some(first) = urdf.links.iter().position(|l| l.name == name) else {
+        return Vec::new();
+    };
+    let identity = rpy_matrix([0.0; 3]);
+    let mut out = vec![(first, [0.0; 3], identity)];
+    let mut frontier = vec![(name.to_string(), [0.0; 3], identity)];
+    while let Some((name, at, turn)) = frontier.pop() {
+        for j in urdf
+            .joints
+            .iter()
+            .filter(|j| j.parent.link == name && matches!(j.joint_type, JointType::Fixed))
+        {
+            let Some(k) = urdf.links.iter().position(|l| l.name == j.child.link) else {
+                continue;
+            };
+            let r = rotate(&turn, j.origin.xyz.0);
+            let here = [at[0] + r[0], at[1] + r[1], at[2] + r[2]];
+            let turned = compose(&turn, &rpy_matrix(j.origin.rpy.0));
+            out.push((k, here, turned));
+            frontier.push((j.child.link.clone(), here, turned));
+        }
+    }
+    out
+}
+
+/// The corners of the boxes bounding each collision shape of `link` (index
+/// `k`), in its frame: a box's own, a cylinder's or capsule's bounding box,
+/// a mesh's hull's bounds.
+pub(crate) fn shape_corners(
+    link: &urdf_rs::Link,
+    k: usize,
+    meshes: &[crate::mesh::MeshCollision],
+) -> Vec<[f64; 3]> {
+    let box_corners = |half: [f64; 3], origin: &urdf_rs::Pose| -> Vec<[f64; 3]> {
+        let turn = rpy_matrix(origin.rpy.0);
+        (0..8)
+            .map(|c| {
+                let v = [0, 1, 2].map(|i| if c >> i & 1 == 1 { half[i] } else { -half[i] });
+                let r = rotate(&turn, v);
+                [0, 1, 2].map(|i| origin.xyz.0[i] + r[i])
+            })
+            .collect()
+    };
+    let mut out = Vec::new();
+    for c in &link.collision {
+        let half = match c.geometry {
+            Geometry::Box { size } => size.0.map(|v| 0.5 * v),
+            Geometry::Cylinder { radius, length } => [radius, radius, 0.5 * length],
+            Geometry::Capsule { radius, length } => [radius, radius, 0.5 * length + radius],
+            Geometry::Sphere { radius } => [radius; 3],
+            Geometry::Mesh { .. } => continue,
+        };
+        out.extend(box_corners(half, &c.origin));
+    }
+    for m in meshes.iter().filter(|m| m.link == k) {
+        for (shape, pose) in &m.parts {
+            let aabb = shape.compute_aabb(pose);
+            let (lo, hi) = (aabb.mins, aabb.maxs);
+            let centre = urdf_rs::Pose {
+                xyz: urdf_rs::Vec3([0, 1, 2].map(|i| 0.5 * f64::from(lo[i] + hi[i]))),
+                rpy: urdf_rs::Vec3([0.0; 3]),
+            };
+            let half = [0, 1, 2].map(|i| 0.5 * f64::from(hi[i] - lo[i]));
+            out.extend(box_corners(half, &centre));
+        }
+    }
+    out
 }
 
 /// The joint that moves `link`, if `link` is moved by a joint (not fixed to

@@ -1,6 +1,7 @@
 //! A URDF's legs and camera found from its tree, for a robot given as a bare
 //! URDF: a leg is a chain of three actuated joints from the root link to a
-//! sphere foot (on the lower leg or on a link fixed to it); front and rear,
+//! sphere foot (on the lower leg or on a link fixed to it), or, when there
+//! are not four of those, to a link of any shape fixed at its end; front and rear,
 //! left and right come from where the hips sit; the camera is the URDF's
 //! `camera` or `camera_link` frame if it has one on a fixed joint, else it
 //! looks forward from the front of the root link. A robot file still says any
@@ -42,23 +43,16 @@ fn position_in_root(urdf: &Robot, joint: &urdf_rs::Joint) -> [f64; 3] {
     p
 }
 
-/// The legs and camera of `urdf` (see the module's documentation), or what
-/// was found instead.
-pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
-    let root = check_tree(urdf)?;
-    let not_found = |reason: String| RobotError::LegsNotFound { reason };
-    // Every link with a sphere collision ends a chain; legs are the chains of
-    // three, each counted once (a toe and its lower leg share one).
+/// The chains of three actuated joints from the root to each link that
+/// `is_foot` takes (by joint names, with where the first joint sits), and
+/// the foot links that end some other chain (why, for the error).
+fn chains(
+    urdf: &Robot,
+    is_foot: impl Fn(&urdf_rs::Link) -> bool,
+) -> (BTreeMap<Vec<String>, [f64; 3]>, Vec<String>) {
     let mut legs: BTreeMap<Vec<String>, [f64; 3]> = BTreeMap::new();
     let mut others: Vec<String> = Vec::new();
-    for link in &urdf.links {
-        let sphere = link
-            .collision
-            .iter()
-            .any(|c| matches!(c.geometry, Geometry::Sphere { .. }));
-        if !sphere {
-            continue;
-        }
+    for link in urdf.links.iter().filter(|l| is_foot(l)) {
         let Some(joints) = chain(urdf, &link.name) else {
             others.push(format!(
                 "{} (below a joint that is neither actuated nor fixed)",
@@ -77,19 +71,61 @@ pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
             ));
         }
     }
+    (legs, others)
+}
+
+/// The legs and camera of `urdf` (see the module's documentation), or what
+/// was found instead.
+pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
+    let root = check_tree(urdf)?;
+    let not_found = |reason: String| RobotError::LegsNotFound { reason };
+    // Every link with a sphere collision ends a chain; legs are the chains of
+    // three, each counted once (a toe and its lower leg share one). With no
+    // four such, a foot may be a link of any shape fixed at a leg's end (a
+    // mesh toe, as Unitree's Go2 and ODRI's Solo 12 have).
+    let sphere = |link: &urdf_rs::Link| {
+        link.collision
+            .iter()
+            .any(|c| matches!(c.geometry, Geometry::Sphere { .. }))
+    };
+    let fixed_shape = |link: &urdf_rs::Link| {
+        !link.collision.is_empty()
+            && urdf
+                .joints
+                .iter()
+                .any(|j| j.child.link == link.name && matches!(j.joint_type, JointType::Fixed))
+    };
+    let (mut legs, mut others) = chains(urdf, sphere);
+    let mut foot = "a sphere foot";
+    if legs.len() != 4 {
+        let (any_legs, any_others) = chains(urdf, fixed_shape);
+        if any_legs.len() == 4 {
+            (legs, others) = (any_legs, any_others);
+        } else {
+            foot = "a sphere foot, or to a link of any shape fixed at its end,";
+            // With no sphere foot at all, the error tells of the other feet.
+            if legs.is_empty() && others.is_empty() {
+                (legs, others) = (any_legs, any_others);
+            }
+        }
+    }
     if legs.len() != 4 {
         return Err(not_found(format!(
-            "{} chains of three actuated joints from the root `{root}` to a sphere foot ({}){}; a \
+            "{} chains of three actuated joints from the root `{root}` to {foot} ({}){}; a \
              quadruped has four: give a robot file that names them",
             legs.len(),
-            legs.keys()
-                .map(|k| k.join(" > "))
-                .collect::<Vec<_>>()
-                .join("; "),
+            if legs.is_empty() {
+                "none".to_string()
+            } else {
+                legs.keys()
+                    .map(|k| k.join(" > "))
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            },
             if others.is_empty() {
                 String::new()
             } else {
-                format!(", and spheres elsewhere: {}", others.join(", "))
+                format!(", and feet elsewhere: {}", others.join(", "))
             }
         )));
     }
@@ -132,17 +168,18 @@ pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
             },
         });
     }
-    // ... or at the middle of the root's front face (its collision box's, or
-    // the front hips' line), looking forward.
-    let root_link = urdf.links.iter().find(|l| l.name == root);
-    let front_face = root_link
+    // ... or at the middle of the root's front face, looking forward: the
+    // front of the collision shapes of the root and of the links fixed to it
+    // (a face plate, a sensor head), so that none of them is in the camera's
+    // way; or, with none of those, the front hips' line. Mesh shapes are not
+    // read here (they are loaded later, and not at all for a robot file that
+    // names its camera), so a root of meshes alone gets the hips' line.
+    let front_face = crate::description::fixed_to(urdf, &root)
         .into_iter()
-        .flat_map(|l| &l.collision)
-        .filter_map(|c| match c.geometry {
-            Geometry::Box { size } if c.origin.rpy.0.iter().all(|v| v.abs() < 1e-9) => {
-                Some(c.origin.xyz.0[0] + 0.5 * size.0[0])
-            }
-            _ => None,
+        .flat_map(|(k, at, turn)| {
+            crate::description::shape_corners(&urdf.links[k], k, &[])
+                .into_iter()
+                .map(move |v| at[0] + crate::description::rotate(&turn, v)[0])
         })
         .fold(f64::NEG_INFINITY, f64::max);
     let front_x = if front_face.is_finite() {

@@ -89,8 +89,11 @@ pub enum RobotError {
         /// What was found instead.
         reason: String,
     },
-    /// A leg's lower segment has no spherical foot at its end.
-    #[error("link `{link}` needs one sphere collision as its foot")]
+    /// A leg's lower segment has no foot at its end.
+    #[error(
+        "link `{link}` needs a foot: a sphere collision on it or on a link fixed to it, or a \
+         link fixed below it with a collision shape"
+    )]
     MissingFoot {
         /// The link's name.
         link: String,

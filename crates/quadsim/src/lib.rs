@@ -22,6 +22,7 @@ pub mod gait;
 pub mod heading;
 pub mod ik;
 pub mod mesh;
+pub mod point_mass;
 pub mod robot_file;
 pub mod scale;
 pub mod scene;

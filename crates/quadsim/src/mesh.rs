@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use rapier3d::geometry::{MeshConverter, SharedShape};
+use rapier3d::geometry::{MeshConverter, MeshConverterError, SharedShape};
 use rapier3d::math::{Pose, Real, Vector};
 use urdf_rs::{Geometry, Robot};
 
@@ -36,7 +36,8 @@ impl std::fmt::Debug for MeshCollision {
 /// Where `filename` may be, for a URDF in `dir`: a plain path relative to
 /// `dir` (or absolute); `file://PATH`; `package://PACKAGE/PATH` relative to
 /// `dir` or to its parent (a ROS package's `urdf/` folder beside its
-/// `meshes/`).
+/// `meshes/`), or to a folder further up (a package holding many robots,
+/// as example-robot-data's `robots/NAME/urdf/`), nearest first.
 fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
     if let Some(path) = filename.strip_prefix("file://") {
         return vec![PathBuf::from(path)];
@@ -45,6 +46,11 @@ fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
         let within = rest.split_once('/').map_or(rest, |(_, path)| path);
         let mut out = vec![dir.join(within), dir.join("..").join(within)];
         out.push(dir.join(rest));
+        // Further up: the grandparent and beyond, as far as the path goes.
+        let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+        for up in absolute.ancestors().skip(2) {
+            out.push(up.join(within));
+        }
         return out;
     }
     vec![dir.join(filename)]
@@ -82,7 +88,8 @@ pub fn with_absolute_meshes(urdf: &Robot, dir: &Path) -> Robot {
 
 /// Every mesh collision shape of `urdf`, read from beside `dir`, as convex
 /// hulls; or the first that cannot be: missing, unreadable, of a format not
-/// read (STL and Wavefront OBJ are), holding no mesh, or with no hull.
+/// read (STL, COLLADA and Wavefront OBJ are), holding no mesh, or with no
+/// hull.
 pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> {
     let mut out = Vec::new();
     for (index, link) in urdf.links.iter().enumerate() {
@@ -111,12 +118,8 @@ pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> 
                     ))
                 })?;
             let s = scale.map_or([1.0; 3], |v| v.0).map(|v| v as Real);
-            let meshes = rapier3d_meshloader::load_from_path(
-                &file,
-                &MeshConverter::ConvexHull,
-                Vector::new(s[0], s[1], s[2]),
-            )
-            .map_err(|e| refuse(format!("cannot be read from {}: {e}", file.display())))?;
+            let meshes = read(&file, Vector::new(s[0], s[1], s[2]))
+                .map_err(|e| refuse(format!("cannot be read from {}: {e}", file.display())))?;
             if meshes.is_empty() {
                 return Err(refuse(format!("{} holds no mesh", file.display())));
             }
@@ -124,7 +127,7 @@ pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> 
             let parts = meshes
                 .into_iter()
                 .map(|m| {
-                    m.map(|m| (m.shape, at * m.pose))
+                    m.map(|(shape, pose)| (shape, at * pose))
                         .map_err(|e| refuse(format!("in {}: {e}", file.display())))
                 })
                 .collect::<Result<Vec<_>, _>>()?;
@@ -136,6 +139,56 @@ pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> 
         }
     }
     Ok(out)
+}
+
+/// One mesh's convex hull and where it sits in the file's frame, or why it
+/// has none.
+type Hull = Result<(SharedShape, Pose), MeshConverterError>;
+
+/// Each mesh of `file`, scaled by `scale`, as its convex hull: what
+/// `rapier3d_meshloader::load_from_path` reads, except that a binary STL
+/// whose 80-byte header begins with "solid" (as CAD exporters write, and
+/// as Solo12's feet are), which that loader takes for ASCII and fails on, is
+/// read as the binary it is. A file is binary STL when its length is
+/// exactly the header, the triangle count and 50 bytes per triangle, the
+/// test other loaders (trimesh, numpy-stl) make. An ASCII STL does not pass
+/// it: its bytes 80-84 are text, a count of at least 0x20202020 triangles,
+/// which would make the file some 27 GB.
+fn read(file: &Path, scale: Vector) -> Result<Vec<Hull>, String> {
+    let is_stl = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+    if is_stl {
+        let mut bytes = std::fs::read(file).map_err(|e| e.to_string())?;
+        if is_binary_stl(&bytes) {
+            // A header of zeros, so the parser does not look for ASCII.
+            bytes[..80].fill(0);
+            let scene = mesh_loader::stl::from_slice(&bytes).map_err(|e| e.to_string())?;
+            return Ok(scene
+                .meshes
+                .iter()
+                .map(|m| {
+                    rapier3d_meshloader::load_from_raw_mesh(m, &MeshConverter::ConvexHull, scale)
+                })
+                .collect());
+        }
+    }
+    let meshes = rapier3d_meshloader::load_from_path(file, &MeshConverter::ConvexHull, scale)
+        .map_err(|e| e.to_string())?;
+    Ok(meshes
+        .into_iter()
+        .map(|m| m.map(|m| (m.shape, m.pose)))
+        .collect())
+}
+
+/// Whether `bytes` are laid out as binary STL: an 80-byte header, a
+/// little-endian triangle count, and 50 bytes per triangle, to the byte.
+fn is_binary_stl(bytes: &[u8]) -> bool {
+    let Some(count) = bytes.get(80..84) else {
+        return false;
+    };
+    let count = u32::from_le_bytes([count[0], count[1], count[2], count[3]]) as u64;
+    bytes.len() as u64 == 84 + 50 * count
 }
 
 /// `urdf` with its mesh collision shapes taken out (as the zero-sized boxes

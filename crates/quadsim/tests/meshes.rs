@@ -17,29 +17,11 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
+include!("common/cube.rs");
+
 /// The box's corners and its twelve outward triangles.
 fn box_mesh() -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
-    let v = (0..8)
-        .map(|i| {
-            let s = |bit: usize, k: usize| if i & bit == 0 { -HALF[k] } else { HALF[k] };
-            [s(1, 0), s(2, 1), s(4, 2)]
-        })
-        .collect();
-    let f = vec![
-        [0, 2, 3],
-        [0, 3, 1],
-        [4, 5, 7],
-        [4, 7, 6],
-        [0, 1, 5],
-        [0, 5, 4],
-        [2, 6, 7],
-        [2, 7, 3],
-        [0, 4, 6],
-        [0, 6, 2],
-        [1, 3, 7],
-        [1, 7, 5],
-    ];
-    (v, f)
+    (cube_corners(HALF), CUBE_FACES.to_vec())
 }
 
 fn obj() -> String {

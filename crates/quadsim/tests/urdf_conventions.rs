@@ -90,10 +90,11 @@ fn a_foot_on_a_link_fixed_to_the_lower_leg_is_the_foot() {
         assert_eq!(toe.foot_radius_m, own.foot_radius_m);
     }
     stands(&d);
-    // A leg that ends in no sphere at all is still refused, naming its link.
+    // A leg that ends in no collision shape at all is still refused, naming
+    // its link (a toe of another shape is a foot: tests/published_shapes.rs).
     let bare = text.replace(
-        r#"<sphere radius="0.012"/>"#,
-        r#"<box size="0.01 0.01 0.01"/>"#,
+        r#"<collision><origin xyz="0 0 0.02" rpy="0 0 0"/><geometry><sphere radius="0.012"/></geometry></collision>"#,
+        "",
     );
     let e = RobotDescription::from_urdf_str(&bare)
         .expect_err("no foot")

@@ -98,7 +98,9 @@ fn a_leg_without_a_foot_is_named() {
         r#"<geometry><box size="0.02 0.02 0.02"/></geometry>"#,
         1,
     );
-    expect_error(&text, "`fl_shank` needs one sphere collision as its foot");
+    // A box on the shank itself is the lower leg's shape, not a foot; a
+    // shape on a link fixed below it would be one.
+    expect_error(&text, "`fl_shank` needs a foot: a sphere collision on it");
 }
 
 #[test]
