@@ -606,7 +606,7 @@ fn check_leg(
 }
 
 /// A 3 x 3 rotation matrix, row-major.
-pub(crate) type Rotation = [[f64; 3]; 3];
+type Rotation = [[f64; 3]; 3];
 
 /// URDF's roll-pitch-yaw (fixed axes x, y, z): `Rz(yaw) Ry(pitch) Rx(roll)`.
 pub(crate) fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
@@ -618,7 +618,7 @@ pub(crate) fn rpy_matrix([r, p, y]: [f64; 3]) -> Rotation {
     ]
 }
 
-pub(crate) fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
+fn rotate(m: &Rotation, v: [f64; 3]) -> [f64; 3] {
     [0, 1, 2].map(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
 }
 
@@ -726,7 +726,7 @@ fn foot_link(
 /// The link `name` and every link fixed below it (by fixed joints, to any
 /// depth): each link's index, with where its frame sits and how it turns in
 /// `name`'s frame; `name` first, at the origin, unturned.
-pub(crate) fn fixed_to(urdf: &Robot, name: &str) -> Vec<(usize, [f64; 3], Rotation)> {
+fn fixed_to(urdf: &Robot, name: &str) -> Vec<(usize, [f64; 3], Rotation)> {
     let Some(first) = urdf.links.iter().position(|l| l.name == name) else {
         return Vec::new();
     };
@@ -755,7 +755,7 @@ pub(crate) fn fixed_to(urdf: &Robot, name: &str) -> Vec<(usize, [f64; 3], Rotati
 /// The corners of the boxes bounding each collision shape of `link` (index
 /// `k`), in its frame: a box's own, a cylinder's or capsule's bounding box,
 /// a mesh's hull's bounds.
-pub(crate) fn shape_corners(
+fn shape_corners(
     link: &urdf_rs::Link,
     k: usize,
     meshes: &[crate::mesh::MeshCollision],

@@ -168,18 +168,17 @@ pub fn discover(urdf: &Robot) -> Result<RobotMap, RobotError> {
             },
         });
     }
-    // ... or at the middle of the root's front face, looking forward: the
-    // front of the collision shapes of the root and of the links fixed to it
-    // (a face plate, a sensor head), so that none of them is in the camera's
-    // way; or, with none of those, the front hips' line. Mesh shapes are not
-    // read here (they are loaded later, and not at all for a robot file that
-    // names its camera), so a root of meshes alone gets the hips' line.
-    let front_face = crate::description::fixed_to(urdf, &root)
+    // ... or at the middle of the root's front face (its collision box's, or
+    // the front hips' line), looking forward.
+    let root_link = urdf.links.iter().find(|l| l.name == root);
+    let front_face = root_link
         .into_iter()
-        .flat_map(|(k, at, turn)| {
-            crate::description::shape_corners(&urdf.links[k], k, &[])
-                .into_iter()
-                .map(move |v| at[0] + crate::description::rotate(&turn, v)[0])
+        .flat_map(|l| &l.collision)
+        .filter_map(|c| match c.geometry {
+            Geometry::Box { size } if c.origin.rpy.0.iter().all(|v| v.abs() < 1e-9) => {
+                Some(c.origin.xyz.0[0] + 0.5 * size.0[0])
+            }
+            _ => None,
         })
         .fold(f64::NEG_INFINITY, f64::max);
     let front_x = if front_face.is_finite() {

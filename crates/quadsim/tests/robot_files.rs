@@ -250,9 +250,7 @@ fn a_bare_urdf_is_a_robot_whose_legs_are_found_from_its_tree() {
     // The URDF's own camera frame is the camera: the ERS-7 to the bit.
     assert_eq!(bare.description.camera, named.camera);
     assert_eq!(bare.sim_config(), quadsim::SimConfig::default());
-    // Without one, the camera looks forward from the front of the torso and
-    // of what is fixed to it: the head's front face (0.125 + 0.04 m), so
-    // that the head is not in its way.
+    // Without one, the camera looks forward from the torso's front face.
     let no_camera = ERS7_URDF
         .replace(r#"<link name="camera"/>"#, "")
         .replace(
@@ -262,11 +260,7 @@ fn a_bare_urdf_is_a_robot_whose_legs_are_found_from_its_tree() {
     let faced =
         RobotFile::from_file(&write(&dir, "no_camera.urdf", &no_camera)).expect("legs found");
     assert_eq!(faced.description.camera.parent, "torso");
-    let [x, y, z] = faced.description.camera.xyz;
-    assert!(
-        (x - 0.165).abs() < 1e-12 && y == 0.0 && z == 0.0,
-        "{x} {y} {z}"
-    );
+    assert_eq!(faced.description.camera.xyz, [0.1, 0.0, 0.0]);
     // Its robot file says what was found, and reads back to the same robot.
     assert!(
         bare.text
