@@ -56,9 +56,8 @@ fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
     vec![dir.join(filename)]
 }
 
-/// Where `filename` is, for a URDF in `dir`, if it is: a plain path relative
-/// to `dir` (or absolute), `file://PATH`, or `package://PACKAGE/PATH`
-/// relative to `dir` or its parent.
+/// Where `filename` is, for a URDF in `dir`, if it is at one of the places
+/// [`candidates`] lists, nearest first.
 pub fn find(dir: &Path, filename: &str) -> Option<PathBuf> {
     candidates(dir, filename).into_iter().find(|p| p.is_file())
 }
@@ -159,19 +158,18 @@ fn read(file: &Path, scale: Vector) -> Result<Vec<Hull>, String> {
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     if is_stl {
+        // Read once, and parsed here whether ASCII or binary.
         let mut bytes = std::fs::read(file).map_err(|e| e.to_string())?;
         if is_binary_stl(&bytes) {
             // A header of zeros, so the parser does not look for ASCII.
             bytes[..80].fill(0);
-            let scene = mesh_loader::stl::from_slice(&bytes).map_err(|e| e.to_string())?;
-            return Ok(scene
-                .meshes
-                .iter()
-                .map(|m| {
-                    rapier3d_meshloader::load_from_raw_mesh(m, &MeshConverter::ConvexHull, scale)
-                })
-                .collect());
         }
+        let scene = mesh_loader::stl::from_slice(&bytes).map_err(|e| e.to_string())?;
+        return Ok(scene
+            .meshes
+            .iter()
+            .map(|m| rapier3d_meshloader::load_from_raw_mesh(m, &MeshConverter::ConvexHull, scale))
+            .collect());
     }
     let meshes = rapier3d_meshloader::load_from_path(file, &MeshConverter::ConvexHull, scale)
         .map_err(|e| e.to_string())?;
