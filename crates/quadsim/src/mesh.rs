@@ -56,8 +56,9 @@ fn candidates(dir: &Path, filename: &str) -> Vec<PathBuf> {
     vec![dir.join(filename)]
 }
 
-/// Where `filename` is, for a URDF in `dir`, if it is at one of the places
-/// [`candidates`] lists, nearest first.
+/// Where `filename` is, for a URDF in `dir`: the nearest of the places it
+/// may be (a plain or `file://` path; `package://PACKAGE/PATH` beside `dir`,
+/// beside its parent, or under any folder further up) that holds a file.
 pub fn find(dir: &Path, filename: &str) -> Option<PathBuf> {
     candidates(dir, filename).into_iter().find(|p| p.is_file())
 }
