@@ -60,7 +60,8 @@ fn main() -> Result<()> {
     let (description, config) = (&scenario.description, scenario.sim);
     let distances = measure::paper_distances_m(scenario.scale());
     let started = std::time::Instant::now();
-    let action = reference::measured_models(&scenario, Some(&args.cache))?.action;
+    // As measured, unchecked: this tool is where an unseen beacon is looked into.
+    let action = reference::measured_world(&scenario.world(0)?, Some(&args.cache))?.action;
     let hold = measure::hold_command(&action);
     println!("stepping in place at command {hold:.1}, where the measured velocity is zero");
     let table = measure::measure_sensor(description, config, &distances, args.readings, hold)?;

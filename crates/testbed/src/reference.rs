@@ -161,18 +161,75 @@ pub enum MeasureError {
     /// A scheduled change of the world cannot be made.
     #[error(transparent)]
     Setting(#[from] crate::scenario::SettingError),
+    /// The robot fell while the stopwatch timed a command: a fallen robot's
+    /// speed is no reference.
+    #[error(
+        "the robot fell while the stopwatch timed command {command:.1} ({world}), so no reference \
+         can be measured: the robot must stay upright at every paper command. See which commands \
+         it walks with `cargo run --release --example measure_action -- --robot ...`; a robot \
+         file's [gait] may steady it (README, \"Bring your own robot\")"
+    )]
+    Fell {
+        /// The command it fell at.
+        command: f64,
+        /// Which world: "the scenario's world", or after which change.
+        world: String,
+    },
+    /// The camera never saw the beacon at one of the stand-and-read
+    /// distances: there is no reading to label.
+    #[error(
+        "the camera saw no beacon standing at {distance_mm:.0} mm ({world}; {missed} frames, none \
+         with a reading), so the sensor model cannot be measured. A link of the robot may hide the \
+         beacon from the camera found for it: place the camera with a robot file's [camera] table \
+         (README, \"Bring your own robot\")"
+    )]
+    Unseen {
+        /// The distance the robot was put at, mm.
+        distance_mm: f64,
+        /// Frames taken there, every one without a reading.
+        missed: usize,
+        /// Which world: "the scenario's world", or after which change.
+        world: String,
+    },
+}
+
+/// The reference measured for `world` (named in errors), refused if a row of
+/// it is not a measurement: the robot fell while it was timed, or the camera
+/// never saw the beacon at a distance.
+fn check_measured(models: &MeasuredModels, world: &str) -> Result<(), MeasureError> {
+    if let Some(m) = models.action.iter().find(|m| !m.upright) {
+        return Err(MeasureError::Fell {
+            command: m.command,
+            world: world.to_string(),
+        });
+    }
+    if let Some(r) = models.sensor.iter().find(|r| !r.obs_px.is_finite()) {
+        return Err(MeasureError::Unseen {
+            distance_mm: r.nominal_mm,
+            missed: r.missed,
+            world: world.to_string(),
+        });
+    }
+    Ok(())
 }
 
 /// Measures the reference models of `scenario` (and of its world after each
 /// scheduled change), or reads them from `cache_dir` if they were measured
-/// before for the same robot, world and protocols.
+/// before for the same robot, world and protocols. Refused, with what to do,
+/// if the robot fell while it was timed or its camera never saw the beacon at
+/// a distance ([`MeasureError::Fell`], [`MeasureError::Unseen`]).
 pub fn measured_models(
     scenario: &Scenario,
     cache_dir: Option<&Path>,
 ) -> Result<MeasuredModels, MeasureError> {
     let mut models = measured_world(&scenario.world(0)?, cache_dir)?;
+    check_measured(&models, "the scenario's world")?;
     for (i, change) in scenario.changes.iter().enumerate() {
         let after = measured_world(&scenario.world(i + 1)?, cache_dir)?;
+        check_measured(
+            &after,
+            &format!("the world after its change at {} s", change.at_s),
+        )?;
         models.from_cache &= after.from_cache;
         models.changes.push(ChangedModels {
             at_s: change.at_s,
@@ -182,8 +239,11 @@ pub fn measured_models(
     Ok(models)
 }
 
-/// The models of one world (no changes), measured or from the cache.
-fn measured_world(
+/// The models of one world (`scenario` with no changes: see [`Scenario::world`]),
+/// measured or from the cache, as the protocols gave them: not checked, so
+/// that a tool can show what a robot that fell or a camera that saw nothing
+/// measured. Judging uses [`measured_models`], which refuses them.
+pub fn measured_world(
     scenario: &Scenario,
     cache_dir: Option<&Path>,
 ) -> Result<MeasuredModels, SimError> {
@@ -315,5 +375,98 @@ impl Reference {
     /// Judges a learner's current models.
     pub fn judge(&self, t_s: f64, learner: &dyn CalibrationLearner) -> Judgement {
         self.judge_models(t_s, learner.action_model(), learner.sensor_model())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A reference as the protocols would give it: every command timed
+    /// upright, every distance read.
+    fn measured() -> MeasuredModels {
+        let action = (-15..=15)
+            .map(|k| {
+                let command = 35.0 * f64::from(k);
+                MeasuredVelocity {
+                    command,
+                    velocity_mm_s: 0.8 * command,
+                    std_mm_s: 1.0,
+                    timings_mm_s: vec![0.8 * command; 5],
+                    upright: true,
+                }
+            })
+            .collect();
+        let sensor = (0..13)
+            .map(|k| {
+                let d = 1200.0 + 200.0 * f64::from(k);
+                MeasuredReading {
+                    nominal_mm: d,
+                    distance_mm: d,
+                    distance_std_mm: 1.0,
+                    obs_px: 60_000.0 / d,
+                    std_px: 0.1,
+                    missed: 0,
+                }
+            })
+            .collect();
+        MeasuredModels {
+            action,
+            sensor,
+            from_cache: false,
+            changes: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn a_fallen_timing_or_an_unseen_beacon_is_no_reference() {
+        assert!(check_measured(&measured(), "w").is_ok());
+
+        let mut fell = measured();
+        fell.action[3].upright = false;
+        let err = check_measured(&fell, "w").unwrap_err();
+        assert!(
+            matches!(&err, MeasureError::Fell { command, .. } if *command == -420.0),
+            "{err}"
+        );
+        assert!(err.to_string().contains("measure_action"), "{err}");
+
+        let mut unseen = measured();
+        unseen.sensor[12].obs_px = f64::NAN;
+        unseen.sensor[12].distance_mm = f64::NAN;
+        unseen.sensor[12].missed = 400;
+        let err = check_measured(&unseen, "w").unwrap_err();
+        assert!(
+            matches!(&err, MeasureError::Unseen { distance_mm, missed: 400, .. } if *distance_mm == 3600.0),
+            "{err}"
+        );
+        assert!(err.to_string().contains("[camera]"), "{err}");
+    }
+
+    #[test]
+    fn a_cached_reference_with_a_fallen_timing_is_refused() {
+        // Written as an older build would have cached it: measured_models must
+        // refuse it, not judge learners against a fallen robot's speed.
+        let scenario = Scenario::paper().expect("scenario");
+        let dir = std::env::temp_dir().join(format!("scasm-fallen-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let mut models = measured();
+        models.action[0].upright = false;
+        let key = key(&scenario);
+        let cached = CachedReference {
+            key: key.clone(),
+            models,
+        };
+        std::fs::write(
+            dir.join(format!("reference-{key}.json")),
+            serde_json::to_string(&cached).expect("json"),
+        )
+        .expect("write");
+        let got = measured_models(&scenario, Some(&dir));
+        let _ = std::fs::remove_dir_all(&dir);
+        assert!(
+            matches!(got, Err(MeasureError::Fell { command, .. }) if command == -525.0),
+            "{got:?}"
+        );
     }
 }
