@@ -424,7 +424,7 @@ mod tests {
 
         let mut fell = measured();
         fell.action[3].upright = false;
-        let err = check_measured(&fell, "w").unwrap_err();
+        let err = check_measured(&fell, "w").expect_err("a fallen timing");
         assert!(
             matches!(&err, MeasureError::Fell { command, .. } if *command == -420.0),
             "{err}"
@@ -435,7 +435,7 @@ mod tests {
         unseen.sensor[12].obs_px = f64::NAN;
         unseen.sensor[12].distance_mm = f64::NAN;
         unseen.sensor[12].missed = 400;
-        let err = check_measured(&unseen, "w").unwrap_err();
+        let err = check_measured(&unseen, "w").expect_err("an unseen beacon");
         assert!(
             matches!(&err, MeasureError::Unseen { distance_mm, missed: 400, .. } if *distance_mm == 3600.0),
             "{err}"
