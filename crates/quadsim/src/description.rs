@@ -421,6 +421,34 @@ fn fixed_path<'a>(urdf: &'a Robot, from: &str, to: &str) -> Option<Vec<&'a urdf_
     Some(path)
 }
 
+/// The link `name` and every link rigidly fixed to it: joined through fixed
+/// joints only, up or down the tree (a camera's link, its housing, the body
+/// it is bolted to), `name` first and the rest in URDF joint order.
+pub(crate) fn rigidly_fixed(urdf: &Robot, name: &str) -> Vec<String> {
+    let mut out = vec![name.to_string()];
+    let mut k = 0;
+    while k < out.len() {
+        for j in urdf
+            .joints
+            .iter()
+            .filter(|j| matches!(j.joint_type, JointType::Fixed))
+        {
+            let other = if j.parent.link == out[k] {
+                &j.child.link
+            } else if j.child.link == out[k] {
+                &j.parent.link
+            } else {
+                continue;
+            };
+            if !out.contains(other) {
+                out.push(other.clone());
+            }
+        }
+        k += 1;
+    }
+    out
+}
+
 /// How far a joint's axis may be from its canonical direction (or its
 /// opposite), component by component.
 const AXIS_TOLERANCE: f64 = 1e-4;

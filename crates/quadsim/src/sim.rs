@@ -33,6 +33,9 @@ pub struct QuadrupedSim {
     links: Vec<(String, RigidBodyHandle, Option<usize>)>,
     torso: RigidBodyHandle,
     camera_parent: RigidBodyHandle,
+    /// The camera's link and every link rigidly fixed to it (through fixed
+    /// joints, up or down the tree): what the camera looks out of.
+    camera_bodies: Vec<RigidBodyHandle>,
     camera_mount: Pose,
     /// Per leg: abduction, hip, knee.
     joints: Vec<[MultibodyJointHandle; 3]>,
@@ -194,6 +197,11 @@ impl QuadrupedSim {
             body_of(&description.root_link).ok_or_else(|| no_link(&description.root_link))?;
         let camera_parent = body_of(&description.camera.parent)
             .ok_or_else(|| no_link(&description.camera.parent))?;
+        let camera_bodies =
+            crate::description::rigidly_fixed(&description.urdf, &description.camera.parent)
+                .iter()
+                .filter_map(|name| body_of(name))
+                .collect();
         let mut joints = Vec::new();
         let mut urdf_limits = Vec::new();
         for leg in &description.legs {
@@ -229,6 +237,7 @@ impl QuadrupedSim {
             links,
             torso,
             camera_parent,
+            camera_bodies,
             camera_mount,
             joints,
             axis_signs: description.legs.iter().map(|l| l.axis_signs).collect(),
@@ -422,7 +431,7 @@ impl QuadrupedSim {
                 &pose,
                 &self.config.beacon,
                 self.band,
-                self.camera_parent,
+                &self.camera_bodies,
             );
             self.heading.observe_bearing(frame.bearing_rad);
             self.latest_frame = Some(frame);
@@ -481,7 +490,7 @@ impl QuadrupedSim {
             &self.config.camera.intrinsics,
             &self.config.beacon,
             self.band,
-            Some(self.camera_parent),
+            &self.camera_bodies,
         )
         .ok()
     }

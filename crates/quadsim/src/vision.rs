@@ -5,7 +5,7 @@
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use rapier3d::dynamics::RigidBodyHandle;
-use rapier3d::geometry::{ColliderHandle, Ray};
+use rapier3d::geometry::{Collider, ColliderHandle, Ray};
 use rapier3d::math::{Pose, Real, Vector};
 use rapier3d::pipeline::{PhysicsWorld, QueryFilter};
 
@@ -91,17 +91,21 @@ pub struct Frame {
 
 /// Finds the band's pixels in the image of a camera at `camera_pose`: a pixel
 /// shows the band when its ray meets the band (exactly, analytically) and nothing
-/// else in the physics world first. The body the camera is mounted on,
-/// `own_body`, hides nothing: its lens looks out of it (a camera mounted on
-/// its link's surface would otherwise see the inside of the link, as the
-/// rounding of each step's pose puts it a hair inside or out).
+/// else in the physics world first. The bodies the camera is mounted on,
+/// `own_bodies` (its link and every link rigidly fixed to it), hide nothing:
+/// its lens looks out of them, as a camera looks out through its housing (a
+/// camera mounted on its link's surface would otherwise see the inside of the
+/// link, as the rounding of each step's pose puts it a hair inside or out,
+/// and one found for a bare URDF at its root's front would see the inside of
+/// a shell or face plate fixed there). Links that move against the camera
+/// (legs) still hide the beacon.
 pub fn find_band(
     world: &PhysicsWorld,
     camera_pose: &Pose,
     intrinsics: &CameraIntrinsics,
     beacon: &BeaconConfig,
     band: ColliderHandle,
-    own_body: Option<RigidBodyHandle>,
+    own_bodies: &[RigidBodyHandle],
 ) -> Result<BandBlob, NoReading> {
     // The band's silhouette lies within the projections of its rims: none of
     // them in the image is out of view, some of them is cut by the border.
@@ -136,11 +140,17 @@ pub fn find_band(
     let (r0, r1) = (clamp(lo[1].floor() - 1.0, h), clamp(hi[1].ceil() + 1.0, h));
 
     let beacon_body = world.colliders[band].parent();
-    let may_occlude = anything_between(world, camera_pose, beacon, [beacon_body, own_body]);
+    let may_occlude = anything_between(world, camera_pose, beacon, beacon_body, own_bodies);
     let o = camera_pose.translation;
     let origin = [o.x, o.y, o.z].map(f64::from);
     let max_toi: Real = 1e3;
     let rays = intrinsics.pixel_rays();
+    let outside_own = |_, c: &Collider| c.parent().is_none_or(|p| !own_bodies.contains(&p));
+    let filter = match own_bodies {
+        [] => QueryFilter::default(),
+        [body] => QueryFilter::default().exclude_rigid_body(*body),
+        _ => QueryFilter::default().predicate(&outside_own),
+    };
     let mut pixels = Vec::new();
     for row in r0..=r1 {
         for col in c0..=c1 {
@@ -156,10 +166,7 @@ pub fn find_band(
             }
             // Only something other than the beacon itself (its pole's top face
             // coincides with the band's bottom face) can hide the band.
-            let filter = match own_body {
-                Some(body) => QueryFilter::default().exclude_rigid_body(body),
-                None => QueryFilter::default(),
-            };
+
             let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
             match first {
                 Some((hit, t))
@@ -201,7 +208,8 @@ fn anything_between(
     world: &PhysicsWorld,
     camera_pose: &Pose,
     beacon: &BeaconConfig,
-    ignored: [Option<RigidBodyHandle>; 2],
+    beacon_body: Option<RigidBodyHandle>,
+    own_bodies: &[RigidBodyHandle],
 ) -> bool {
     use rapier3d::parry::query::intersection_test;
     use rapier3d::parry::shape::ConvexPolyhedron;
@@ -223,7 +231,10 @@ fn anything_between(
     world
         .colliders
         .iter()
-        .filter(|(_, c)| c.parent().is_none_or(|p| !ignored.contains(&Some(p))))
+        .filter(|(_, c)| {
+            c.parent()
+                .is_none_or(|p| Some(p) != beacon_body && !own_bodies.contains(&p))
+        })
         .any(|(_, c)| {
             intersection_test(&identity, &hull, c.position(), c.shape())
                 .map_or(true, |i| i.intersecting)
@@ -275,10 +286,10 @@ impl Camera {
         camera_pose: &Pose,
         beacon: &BeaconConfig,
         band: ColliderHandle,
-        own_body: RigidBodyHandle,
+        own_bodies: &[RigidBodyHandle],
     ) -> Frame {
         let intr = &self.config.intrinsics;
-        match find_band(world, camera_pose, intr, beacon, band, Some(own_body)) {
+        match find_band(world, camera_pose, intr, beacon, band, own_bodies) {
             Ok(blob) => {
                 let obs = blob.extent_px() + self.noise.sample(&mut self.rng);
                 Frame {

@@ -110,7 +110,7 @@ fn bearing_is_positive_for_a_beacon_on_the_left() {
         &CameraIntrinsics::default(),
         &beacon,
         band,
-        None,
+        &[],
     )
     .expect("seen");
     let bearing = CameraIntrinsics::default().bearing_of_column(blob.mean_column());
@@ -143,7 +143,7 @@ fn no_reading_out_of_view_behind_cut_or_occluded() {
             Vector::new(x as f32, y as f32, 0.2),
             rapier3d::math::Rotation::from_rotation_z(yaw as f32),
         );
-        vision::find_band(&world, &pose, &intr, &beacon, band, None)
+        vision::find_band(&world, &pose, &intr, &beacon, band, &[])
     };
     // Facing away.
     assert_eq!(
@@ -230,6 +230,27 @@ fn a_camera_on_its_links_face_is_not_hidden_by_the_link() {
         .filter(|f| f.obs_px == Err(NoReading::Occluded))
         .count();
     assert_eq!(hidden, 0, "{hidden} of {} frames hidden", frames.len());
+    assert!(frames.iter().all(|f| f.obs_px.is_ok()), "{frames:?}");
+}
+
+#[test]
+fn a_camera_inside_a_link_fixed_to_its_own_looks_out_of_it() {
+    // The head's camera moved back inside the torso box (the head is fixed to
+    // the torso by the neck): as a camera behind a face plate or inside a
+    // shell bolted to its link, it looks out through its housing. Without
+    // that, the torso, another body, hides the band in every frame.
+    let urdf = urdf_rs::read_from_string(ERS7_URDF).expect("urdf");
+    let mut map = quadsim::description::RobotMap::conventional(&urdf).expect("map");
+    // The head sits at x = 0.125 on the torso, whose box ends at x = 0.10.
+    map.camera.xyz = [-0.075, 0.0, -0.05];
+    let d = RobotDescription::from_urdf(urdf, &map).expect("mounted");
+    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    sim.set_command(200.0).expect("finite");
+    let mut frames = Vec::new();
+    while sim.time_s() < 3.0 {
+        sim.step();
+        frames.extend(sim.take_frame());
+    }
     assert!(frames.iter().all(|f| f.obs_px.is_ok()), "{frames:?}");
 }
 

@@ -19,8 +19,9 @@ pub const MEASURE_READINGS: usize = 100;
 /// Bumped whenever a protocol or the physics changes in a way the settings do
 /// not show, so that cached references measured the old way are measured again
 /// (3: the patched rapier3d's mass matrix; 4: the camera's own link hides
-/// nothing, and a scaled robot's cadence is found by the walk test).
-const PROTOCOL_VERSION: u32 = 4;
+/// nothing, and a scaled robot's cadence is found by the walk test; 5: nor
+/// does any link rigidly fixed to it).
+const PROTOCOL_VERSION: u32 = 5;
 
 /// The measured models with their spreads, as the protocols give them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
