@@ -292,3 +292,26 @@ fn a_change_that_cannot_be_made_is_named() {
     );
     assert_eq!(s.duration_s, 600.0);
 }
+
+#[test]
+fn the_solver_iterations_are_a_setting_checked_and_written_back() {
+    let s = Scenario::from_settings(None, None, &["physics.solver_iterations=2".to_string()])
+        .expect("two iterations");
+    let base = Scenario::paper().expect("paper");
+    assert_eq!(s.sim.solver_iterations, 2);
+    assert_eq!(base.sim.solver_iterations, 1, "the default is one");
+    assert_ne!(s.reference_key(), base.reference_key());
+    let mut again = Scenario::paper().expect("paper");
+    again
+        .apply_toml("config.toml", &s.to_toml())
+        .expect("round trip");
+    assert_eq!(again.sim, s.sim);
+    refused(
+        "[physics]\nsolver_iterations = 0\n",
+        "physics.solver_iterations",
+    );
+    refused(
+        "[physics]\nsolver_iterations = 1.5\n",
+        "physics.solver_iterations",
+    );
+}

@@ -61,7 +61,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 22] = [
+pub(crate) const SETTINGS: [Entry; 23] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -217,6 +217,16 @@ pub(crate) const SETTINGS: [Entry; 22] = [
     ),
     world_number!("beacon.radius_m", "the beacon's radius, m", beacon.radius_m),
     world_number!("physics.dt", "the physics step, s", dt_s),
+    Entry {
+        key: "physics.solver_iterations",
+        kind: Kind::Count,
+        doc: "the constraint solver's iterations a step (1; a heavy robot may need 2)",
+        set: |s, v| {
+            s.sim.solver_iterations = count::<usize>(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::Integer(s.sim.solver_iterations.try_into().unwrap_or(i64::MAX)),
+    },
 ];
 
 /// The settings `--set` understands besides a learner's own
