@@ -129,12 +129,7 @@ fn a_robot_file_sets_the_robot_and_the_world_at_its_scale_before_anything_else()
     assert!((s.learner.gamma.powf(t) - base.learner.gamma).abs() < 1e-12);
     assert_ne!(s.reference_key(), base.reference_key());
     // Written out, it reads back to the same scenario.
-    let mut again = Scenario::paper().expect("paper");
-    again
-        .apply_toml("config.toml", &s.to_toml())
-        .expect("round trip");
-    assert_eq!(again.sim, s.sim);
-    assert_eq!(again.reference_key(), s.reference_key());
+    reads_back(&s);
     // The ERS-7 by name is the default robot, to the bit.
     let ers7 = Scenario::from_settings(None, None, &["robot.file=ers7".to_string()]).expect("ers7");
     assert_eq!(ers7.sim, base.sim);
@@ -293,6 +288,16 @@ fn a_change_that_cannot_be_made_is_named() {
     assert_eq!(s.duration_s, 600.0);
 }
 
+/// `s` written out as a config.toml reads back to the same world and reference.
+fn reads_back(s: &Scenario) {
+    let mut again = Scenario::paper().expect("paper");
+    again
+        .apply_toml("config.toml", &s.to_toml())
+        .expect("round trip");
+    assert_eq!(again.sim, s.sim);
+    assert_eq!(again.reference_key(), s.reference_key());
+}
+
 #[test]
 fn the_solver_iterations_are_a_setting_checked_and_written_back() {
     let s = Scenario::from_settings(None, None, &["physics.solver_iterations=2".to_string()])
@@ -301,11 +306,7 @@ fn the_solver_iterations_are_a_setting_checked_and_written_back() {
     assert_eq!(s.sim.solver_iterations, 2);
     assert_eq!(base.sim.solver_iterations, 1, "the default is one");
     assert_ne!(s.reference_key(), base.reference_key());
-    let mut again = Scenario::paper().expect("paper");
-    again
-        .apply_toml("config.toml", &s.to_toml())
-        .expect("round trip");
-    assert_eq!(again.sim, s.sim);
+    reads_back(&s);
     refused(
         "[physics]\nsolver_iterations = 0\n",
         "physics.solver_iterations",
