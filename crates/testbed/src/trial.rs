@@ -158,7 +158,16 @@ pub struct Recording {
 impl Recording {
     /// Whether the robot tipped over at any point.
     pub fn fell(&self) -> bool {
-        self.frames.iter().any(|f| !f.truth.upright)
+        self.fell_at_s().is_some()
+    }
+
+    /// When the robot tipped over, s, if it did: the end of the first frame
+    /// during which it was not upright throughout (to within a frame).
+    pub fn fell_at_s(&self) -> Option<f64> {
+        self.frames
+            .iter()
+            .find(|f| !f.truth.upright)
+            .map(FrameRecord::end_s)
     }
 }
 
@@ -381,8 +390,8 @@ pub struct TrialOutcome {
     /// (A0 and the sensor model learned from it on the same frames, section
     /// IV), if it rode along (see [`Comparators::a0_baseline`]).
     pub start: Option<Judgement>,
-    /// Whether the robot tipped over at any point.
-    pub fell: bool,
+    /// When the robot was first seen tipped over, s, if it was.
+    pub fell_at_s: Option<f64>,
     /// Simulated seconds per wall-clock second of the recording's physics.
     pub realtime_factor: f64,
     /// When the world changed during the trial, s (see [`Reference::at`]).
@@ -527,7 +536,7 @@ pub fn learn(
         over_time,
         action_model: learner.action_model(),
         sensor_model: learner.sensor_model(),
-        fell: recording.fell(),
+        fell_at_s: recording.fell_at_s(),
         realtime_factor: recording.realtime_factor,
         world_changes_s: reference.changes.iter().map(|c| c.0).collect(),
     })
@@ -550,4 +559,40 @@ pub fn run_trial(
         reference,
         judge_every_s,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn frame(k: u32, upright: bool) -> FrameRecord {
+        FrameRecord {
+            t_s: 0.05 * f64::from(k),
+            dt_s: 0.05,
+            command: 0.0,
+            obs_px: Some(40.0),
+            truth: Truth {
+                x_mm: 2000.0,
+                lateral_mm: 0.0,
+                yaw_rad: 0.0,
+                upright,
+            },
+        }
+    }
+
+    #[test]
+    fn a_fall_is_dated_by_the_end_of_the_frame_it_happened_in() {
+        let recording = |fallen_from: u32| Recording {
+            seed: 0,
+            frames: (0..10).map(|k| frame(k, k < fallen_from)).collect(),
+            realtime_factor: f64::NAN,
+        };
+        let upright = recording(10);
+        assert_eq!((upright.fell(), upright.fell_at_s()), (false, None));
+        let fell = recording(4);
+        assert!(fell.fell());
+        // Frame 4 runs from 0.20 to 0.25 s.
+        let at = fell.fell_at_s().expect("fell");
+        assert!((at - 0.25).abs() < 1e-12, "{at}");
+    }
 }

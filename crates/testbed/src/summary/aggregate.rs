@@ -160,11 +160,18 @@ impl Aggregate {
         s
     }
 
-    /// The failed trials as JSON: `[{"seed": 3, "status": "fell"}, ...]`.
+    /// The failed trials as JSON: `[{"seed": 3, "status": "fell at 12.35 s",
+    /// "fell_at_s": 12.35}, {"seed": 9, "status": "no model"}, ...]`.
     pub fn failed_json(&self) -> serde_json::Value {
         self.failed
             .iter()
-            .map(|(seed, status)| serde_json::json!({"seed": seed, "status": status.to_string()}))
+            .map(|(seed, status)| {
+                let mut row = serde_json::json!({"seed": seed, "status": status.to_string()});
+                if let TrialStatus::Fell { at_s: Some(t) } = status {
+                    row["fell_at_s"] = serde_json::json!(t);
+                }
+                row
+            })
             .collect()
     }
 
@@ -328,7 +335,7 @@ mod tests {
     fn failed_trials_are_counted_named_and_kept_out_of_the_mean() {
         let a = Aggregate::of(&[
             (0, TrialStatus::Ok, figures(10.0)),
-            (1, TrialStatus::Fell, figures(1000.0)),
+            (1, TrialStatus::Fell { at_s: Some(260.1) }, figures(1000.0)),
             (2, TrialStatus::Ok, figures(20.0)),
             (3, TrialStatus::NoModel, Figures::filled(f64::NAN)),
         ]);
@@ -336,8 +343,12 @@ mod tests {
         assert_eq!(a.mean.action_rmse_mm_s, 15.0);
         assert_eq!(
             a.describe(),
-            "2 of 4 trials ok; not in the means: seed 1 (fell), seed 3 (no model)"
+            "2 of 4 trials ok; not in the means: seed 1 (fell at 260.10 s), seed 3 (no model)"
         );
+        let failed = a.failed_json();
+        assert_eq!(failed[0]["fell_at_s"], serde_json::json!(260.1));
+        assert_eq!(failed[1]["status"], "no model");
+        assert!(failed[1].get("fell_at_s").is_none());
         let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
         assert!(none.mean.action_rmse_mm_s.is_nan());
         assert!(none.median.action_rmse_mm_s.is_nan());

@@ -151,7 +151,7 @@ mod tests {
             row(1, 10.0, 20.0, TrialStatus::Ok),
             row(2, 11.0, 52.0, TrialStatus::Ok),
             row(3, 30.0, 50.0, TrialStatus::Ok),
-            row(4, 10.0, 50.0, TrialStatus::Fell),
+            row(4, 10.0, 50.0, TrialStatus::Fell { at_s: None }),
         ];
         // Medians of the ok trials: 11 mm/s and 52 mm; trial 2 is both.
         assert_eq!(typical_seed(&rows), Some(2));
@@ -171,7 +171,7 @@ mod tests {
             (1, TrialStatus::Ok, f(10.0)),
             (2, TrialStatus::Ok, f(12.0)),
             (3, TrialStatus::Ok, f(130.0)),
-            (4, TrialStatus::Fell, f(200.0)),
+            (4, TrialStatus::Fell { at_s: None }, f(200.0)),
         ];
         let json = summary_json(&rows, "scasm", serde_json::Value::Null, "reference");
         assert_eq!(json["trials_ok"], 3);

@@ -5,13 +5,18 @@ use crate::trial::TrialOutcome;
 
 /// How a trial ended. Only `Ok` trials enter a mean; every other one is counted
 /// and named in every report, so none silently drops out.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum TrialStatus {
     /// The robot stayed upright and both models were learned, with finite errors.
     Ok,
-    /// The robot tipped over (its world is no longer the experiment's).
-    Fell,
+    /// The robot tipped over (its world is no longer the experiment's), by
+    /// `at_s` (s into the trial, the end of the frame it tipped in) when
+    /// that is known.
+    Fell {
+        /// When, s.
+        at_s: Option<f64>,
+    },
     /// A model was never determined by the data.
     NoModel,
     /// Both models exist but an error is not finite.
@@ -25,8 +30,8 @@ impl TrialStatus {
     /// non-finite errors.
     pub fn of(outcome: &TrialOutcome) -> Self {
         let j = &outcome.last;
-        if outcome.fell {
-            Self::Fell
+        if let Some(at_s) = outcome.fell_at_s {
+            Self::Fell { at_s: Some(at_s) }
         } else if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
             Self::NoModel
         } else if [j.action_rmse_mm_s, j.sensor_rmse_mm, j.consistency]
@@ -48,7 +53,14 @@ impl TrialStatus {
     pub fn parse(text: &str) -> Self {
         match text {
             "ok" => Self::Ok,
-            "fell" => Self::Fell,
+            "fell" => Self::Fell { at_s: None },
+            fell if fell.starts_with("fell at ") && fell.ends_with(" s") => {
+                let at = &fell["fell at ".len()..fell.len() - " s".len()];
+                match at.parse::<f64>() {
+                    Ok(at_s) => Self::Fell { at_s: Some(at_s) },
+                    Err(_) => Self::Error(fell.into()),
+                }
+            }
             "no model" => Self::NoModel,
             "diverged" => Self::Diverged,
             other => Self::Error(other.strip_prefix("error: ").unwrap_or(other).into()),
@@ -60,7 +72,9 @@ impl std::fmt::Display for TrialStatus {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Self::Ok => f.write_str("ok"),
-            Self::Fell => f.write_str("fell"),
+            Self::Fell { at_s: None } => f.write_str("fell"),
+            // To the hundredth of a second (frames come every 50 ms).
+            Self::Fell { at_s: Some(t) } => write!(f, "fell at {t:.2} s"),
             Self::NoModel => f.write_str("no model"),
             Self::Diverged => f.write_str("diverged"),
             Self::Error(e) => write!(f, "error: {e}"),
@@ -76,7 +90,8 @@ mod tests {
     fn statuses_read_back_as_written() {
         for s in [
             TrialStatus::Ok,
-            TrialStatus::Fell,
+            TrialStatus::Fell { at_s: None },
+            TrialStatus::Fell { at_s: Some(260.1) },
             TrialStatus::NoModel,
             TrialStatus::Diverged,
             TrialStatus::Error("the learner refused an event".into()),
