@@ -146,11 +146,7 @@ pub fn find_band(
     let max_toi: Real = 1e3;
     let rays = intrinsics.pixel_rays();
     let outside_own = |_, c: &Collider| c.parent().is_none_or(|p| !own_bodies.contains(&p));
-    let filter = match own_bodies {
-        [] => QueryFilter::default(),
-        [body] => QueryFilter::default().exclude_rigid_body(*body),
-        _ => QueryFilter::default().predicate(&outside_own),
-    };
+    let filter = QueryFilter::default().predicate(&outside_own);
     let mut pixels = Vec::new();
     for row in r0..=r1 {
         for col in c0..=c1 {
@@ -166,7 +162,6 @@ pub fn find_band(
             }
             // Only something other than the beacon itself (its pole's top face
             // coincides with the band's bottom face) can hide the band.
-
             let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
             match first {
                 Some((hit, t))

@@ -204,6 +204,18 @@ fn same_seed_same_readings_other_seed_other_noise() {
     assert_ne!(run(1), run(2));
 }
 
+/// The frames of `d` walking at `command` from the start, for `seconds`.
+fn walking(d: &RobotDescription, command: f64, seconds: f64) -> Vec<quadsim::Frame> {
+    let mut sim = QuadrupedSim::new(d, SimConfig::default()).expect("sim");
+    sim.set_command(command).expect("finite");
+    let mut frames = Vec::new();
+    while sim.time_s() < seconds {
+        sim.step();
+        frames.extend(sim.take_frame());
+    }
+    frames
+}
+
 #[test]
 fn a_camera_on_its_links_face_is_not_hidden_by_the_link() {
     // The camera on the middle of the torso box's front face (x = 0.10), as a
@@ -218,13 +230,7 @@ fn a_camera_on_its_links_face_is_not_hidden_by_the_link() {
         rpy: [0.0; 3],
     };
     let d = RobotDescription::from_urdf(urdf, &map).expect("mounted");
-    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
-    sim.set_command(300.0).expect("finite");
-    let mut frames = Vec::new();
-    while sim.time_s() < 6.0 {
-        sim.step();
-        frames.extend(sim.take_frame());
-    }
+    let frames = walking(&d, 300.0, 6.0);
     let hidden = frames
         .iter()
         .filter(|f| f.obs_px == Err(NoReading::Occluded))
@@ -244,13 +250,7 @@ fn a_camera_inside_a_link_fixed_to_its_own_looks_out_of_it() {
     // The head sits at x = 0.125 on the torso, whose box ends at x = 0.10.
     map.camera.xyz = [-0.075, 0.0, -0.05];
     let d = RobotDescription::from_urdf(urdf, &map).expect("mounted");
-    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
-    sim.set_command(200.0).expect("finite");
-    let mut frames = Vec::new();
-    while sim.time_s() < 3.0 {
-        sim.step();
-        frames.extend(sim.take_frame());
-    }
+    let frames = walking(&d, 200.0, 3.0);
     assert!(frames.iter().all(|f| f.obs_px.is_ok()), "{frames:?}");
 }
 
