@@ -32,18 +32,19 @@ fn main() -> Result<()> {
     let wall = started.elapsed().as_secs_f64();
 
     println!(
-        "{:>8} {:>14} {:>10} {:>10} {:>10} {:>8}",
-        "command", "velocity mm/s", "std mm/s", "min", "max", "upright"
+        "{:>8} {:>14} {:>10} {:>10} {:>10} {:>8} {:>8}",
+        "command", "velocity mm/s", "std mm/s", "min", "max", "upright", "blew up"
     );
     for m in &measured {
         println!(
-            "{:>8.0} {:>14.1} {:>10.1} {:>10.1} {:>10.1} {:>8}",
+            "{:>8.0} {:>14.1} {:>10.1} {:>10.1} {:>10.1} {:>8} {:>8}",
             m.command,
             m.velocity_mm_s,
             m.std_mm_s,
             m.min_mm_s(),
             m.max_mm_s(),
-            m.upright
+            m.upright,
+            m.blew_up
         );
     }
     let points: Vec<(f64, f64)> = measured

@@ -8,6 +8,7 @@
 
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
+use rayon::prelude::*;
 use scasm::{BatchMl, BatchMlConfig, CalibrationLearner, Event, EventError, Polynomial};
 use testbed::floor::{self, Floor, Noise, Sample};
 use testbed::metrics;
@@ -200,14 +201,16 @@ fn the_efficient_estimators_spread_is_the_floor_and_no_learner_beats_it() {
     // In the class, the floor is its variance alone.
     assert!(bound.action_rmse_mm_s - bound.action_sd_mm_s < 1e-6 * bound.action_rmse_mm_s);
 
-    let (mut action, mut sensor) = (Vec::new(), Vec::new());
-    for _ in 0..150 {
-        let rows = world.draw(&path, &mut rng);
-        let (a, s) = floor::maximum_likelihood(&rows, reference, degrees, noise).expect("ml");
-        let (ea, es) = errors(&a, &s, reference);
-        action.push(ea);
-        sensor.push(es);
-    }
+    // The draws made in turn (the same draws on any machine), the fits side
+    // by side.
+    let draws: Vec<Vec<Sample>> = (0..150).map(|_| world.draw(&path, &mut rng)).collect();
+    let (action, sensor): (Vec<Vec<f64>>, Vec<Vec<f64>>) = draws
+        .par_iter()
+        .map(|rows| {
+            let (a, s) = floor::maximum_likelihood(rows, reference, degrees, noise).expect("ml");
+            errors(&a, &s, reference)
+        })
+        .unzip();
     let (action_spread, action_square) = spread_and_mean_square(&action);
     let (sensor_spread, sensor_square) = spread_and_mean_square(&sensor);
     let ratio_a = action_square.sqrt() / bound.action_rmse_mm_s;
@@ -226,35 +229,39 @@ fn the_efficient_estimators_spread_is_the_floor_and_no_learner_beats_it() {
     // A learner that knows neither the noises nor the truth does no better
     // than the floor: batch-ml on more draws of the same path, fed as a
     // trial feeds it.
-    let (mut action_sq, mut sensor_sq) = (0.0, 0.0);
-    let draws = 12;
-    for _ in 0..draws {
-        let rows = world.draw(&path, &mut rng);
-        let mut learner = BatchMl::new(BatchMlConfig::default().validate().expect("valid"));
-        let mut start = 0.0;
-        for r in &rows {
-            learner
-                .handle(Event::Command {
-                    t_s: start,
-                    dt_s: r.t_s - start,
-                    command: r.command,
-                })
-                .expect("command");
-            learner
-                .handle(Event::Reading {
-                    t_s: r.t_s,
-                    obs_px: r.obs_px.expect("reading"),
-                })
-                .expect("reading");
-            start = r.t_s;
-        }
-        let a = metrics::action_error(&learner.action_model().expect("A"), &reference.action);
-        let s = metrics::sensor_error(&learner.sensor_model().expect("S"), &reference.sensor);
-        action_sq += a.rmse * a.rmse / f64::from(draws);
-        sensor_sq += s.rmse * s.rmse / f64::from(draws);
-    }
+    let draws: Vec<Vec<Sample>> = (0..12).map(|_| world.draw(&path, &mut rng)).collect();
+    let squares: Vec<(f64, f64)> = draws
+        .par_iter()
+        .map(|rows| {
+            let mut learner = BatchMl::new(BatchMlConfig::default().validate().expect("valid"));
+            let mut start = 0.0;
+            for r in rows {
+                learner
+                    .handle(Event::Command {
+                        t_s: start,
+                        dt_s: r.t_s - start,
+                        command: r.command,
+                    })
+                    .expect("command");
+                learner
+                    .handle(Event::Reading {
+                        t_s: r.t_s,
+                        obs_px: r.obs_px.expect("reading"),
+                    })
+                    .expect("reading");
+                start = r.t_s;
+            }
+            let a = metrics::action_error(&learner.action_model().expect("A"), &reference.action);
+            let s = metrics::sensor_error(&learner.sensor_model().expect("S"), &reference.sensor);
+            (a.rmse * a.rmse, s.rmse * s.rmse)
+        })
+        .collect();
+    let n = squares.len() as f64;
+    // Summed in the draws' order, whatever the threads' order.
+    let action_sq = squares.iter().map(|q| q.0).sum::<f64>() / n;
+    let sensor_sq = squares.iter().map(|q| q.1).sum::<f64>() / n;
     eprintln!(
-        "batch-ml's RMS over {draws} draws: action {:.3} mm/s, sensor {:.3} mm",
+        "batch-ml's RMS over {n} draws: action {:.3} mm/s, sensor {:.3} mm",
         action_sq.sqrt(),
         sensor_sq.sqrt()
     );

@@ -159,13 +159,49 @@ fn a_damaged_dataset_is_refused_naming_file_and_line() {
     damage(
         "damaged-version",
         "dataset.json",
-        &|t| t.replacen("\"format_version\": 1", "\"format_version\": 99", 1),
+        &|t| t.replacen("\"format_version\": 2", "\"format_version\": 99", 1),
         "format version 99",
     );
     let dir = written("damaged-missing");
     std::fs::remove_file(dir.join("truth.csv")).expect("remove");
     let e = dataset::read(&dir).expect_err("missing file").to_string();
     assert!(e.contains("truth.csv"), "{e}");
+}
+
+#[test]
+fn a_dataset_of_format_version_1_still_reads() {
+    // As version 1 wrote it: no `blew_up` column in truth.csv, no `blew_up`
+    // in the reference's timings.
+    let (_, models, recording) = setup();
+    let dir = written("version-1");
+    let meta_path = dir.join("dataset.json");
+    let mut meta: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&meta_path).expect("read")).expect("json");
+    assert_eq!(meta["format_version"], 2);
+    meta["format_version"] = 1.into();
+    let timings = meta["reference"]["action"].as_array_mut().expect("timings");
+    for t in timings {
+        assert!(
+            t.as_object_mut()
+                .expect("a timing")
+                .remove("blew_up")
+                .is_some()
+        );
+    }
+    std::fs::write(&meta_path, meta.to_string()).expect("write");
+    let truth_path = dir.join("truth.csv");
+    let truth = std::fs::read_to_string(&truth_path).expect("read");
+    let old: Vec<&str> = truth
+        .lines()
+        .map(|l| l.rsplit_once(',').expect("a column").0)
+        .collect();
+    assert_eq!(old[0], "t_s,x_true_mm,lateral_mm,yaw_rad,upright");
+    std::fs::write(&truth_path, old.join("\n")).expect("write");
+
+    let back = dataset::read(&dir).expect("a version 1 dataset reads");
+    assert!(recording.frames.iter().all(|f| !f.truth.blew_up));
+    assert_eq!(back.recording.frames, recording.frames);
+    assert_eq!(back.meta.reference.action, models.action);
 }
 
 #[test]

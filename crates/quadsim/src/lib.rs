@@ -36,7 +36,7 @@ pub use description::{LEG_NAMES, RobotDescription};
 pub use error::{RobotError, SimConfigError, SimError};
 pub use robot_file::RobotFile;
 pub use scale::RobotScale;
-pub use sim::{QuadrupedSim, TorsoState};
+pub use sim::{BLOW_UP_ENERGY, QuadrupedSim, TorsoState};
 pub use vision::{CameraConfig, Frame, NoReading};
 
 /// The default robot description shipped in `assets/ers7.urdf`.

@@ -63,7 +63,23 @@ pub struct QuadrupedSim {
     frames_taken: u64,
     latest_frame: Option<Frame>,
     fresh_frame: bool,
+    /// [`BLOW_UP_ENERGY`] times the potential energy of the robot's whole
+    /// mass at its torso's standing height, J.
+    blow_up_energy_j: f64,
+    /// When the physics first blew up, s (see [`QuadrupedSim::blew_up_at_s`]).
+    blew_up_at_s: Option<f64>,
 }
+
+/// A physics blow-up, told from a fall: the robot's kinetic energy (every
+/// link's, translation and rotation) above this many times the potential
+/// energy of its whole mass at its torso's standing height. A robot that
+/// falls over turns at most about that potential energy into motion, and a
+/// walking one has a tenth of it or less (the ERS-7 walking at command 300,
+/// at its peak 9 %; the ANYmal C at 300, 3 %); ten times it would be a robot
+/// a third of a metre tall moving at 7.7 m/s. The ANYmal C, blowing up as
+/// it stands (README, "Robots by other makers"), crossed it with 44 times
+/// the potential energy, 4.4 times this line.
+pub const BLOW_UP_ENERGY: f64 = 10.0;
 
 impl std::fmt::Debug for QuadrupedSim {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -230,6 +246,14 @@ impl QuadrupedSim {
             .collect();
 
         let last_attitude = world.bodies[torso].position().rotation;
+        // The URDF's masses (rapier fills in the bodies' own at the first step).
+        let mass_kg: f64 = description
+            .urdf
+            .links
+            .iter()
+            .map(|l| l.inertial.mass.value)
+            .sum();
+        let blow_up_energy_j = BLOW_UP_ENERGY * mass_kg * 9.81 * torso_z;
         let mut sim = Self {
             config,
             world,
@@ -256,6 +280,8 @@ impl QuadrupedSim {
             frames_taken: 0,
             latest_frame: None,
             fresh_frame: false,
+            blow_up_energy_j,
+            blew_up_at_s: None,
         };
         sim.set_joint_damping();
         sim.scale_limits();
@@ -419,6 +445,12 @@ impl QuadrupedSim {
         let rate = self.gyro();
         self.heading.integrate(rate, self.config.dt_s);
         self.steps += 1;
+        if self.blew_up_at_s.is_none() {
+            let energy_j = self.kinetic_energy_j();
+            if !energy_j.is_finite() || energy_j > self.blow_up_energy_j {
+                self.blew_up_at_s = Some(self.time_s());
+            }
+        }
         // Frames come at their own rate: the first at one frame period, then
         // whenever simulated time reaches the next multiple of it.
         let next_frame_s = (self.frames_taken + 1) as f64 * self.config.camera.frame_period_s;
@@ -629,6 +661,43 @@ impl QuadrupedSim {
             up: [up.x, up.y, up.z].map(f64::from),
             yaw_rad: f64::from(fwd.y.atan2(fwd.x)),
         }
+    }
+
+    /// Ground truth: the kinetic energy of the robot's links (translation and
+    /// rotation), J.
+    pub fn kinetic_energy_j(&self) -> f64 {
+        // About each body's principal axes: rapier's own `kinetic_energy`
+        // inverts the world inverse inertia, which is not finite for a link
+        // without inertia about some axis (a sensor's frame, say).
+        self.links
+            .iter()
+            .map(|(_, handle, _)| {
+                let body = &self.world.bodies[*handle];
+                let local = &body.mass_properties().local_mprops;
+                let axes = body.position().rotation * local.principal_inertia_local_frame;
+                let w = axes.inverse() * body.angvel();
+                let i = local.principal_inertia();
+                let spin = i.x * w.x * w.x + i.y * w.y * w.y + i.z * w.z * w.z;
+                0.5 * f64::from(local.mass() * body.linvel().length_squared() + spin)
+            })
+            .sum()
+    }
+
+    /// When the physics blew up, s into the simulation, if it has: the end
+    /// of the first step after which the robot's kinetic energy passed
+    /// [`BLOW_UP_ENERGY`] times the potential energy of its mass at its
+    /// torso's standing height (or was not finite). No legged robot walks or
+    /// falls with that much; a solver that has blown up throws it about with
+    /// it. A fall is [`QuadrupedSim::is_upright`]'s; a blow-up usually
+    /// throws the robot over too, and is what to report when it has.
+    pub fn blew_up_at_s(&self) -> Option<f64> {
+        self.blew_up_at_s
+    }
+
+    /// The kinetic energy above which the physics counts as blown up
+    /// ([`QuadrupedSim::blew_up_at_s`]), J.
+    pub fn blow_up_energy_j(&self) -> f64 {
+        self.blow_up_energy_j
     }
 
     /// Ground truth: whether the torso is upright (its up axis has a world z

@@ -17,10 +17,15 @@ use crate::scenario::Scenario;
 use crate::trial::{FrameRecord, Recording, Truth};
 
 /// The format this code writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
+
+/// The oldest format this code reads: version 1 had no `blew_up` column in
+/// `truth.csv` (its trials read as not blown up).
+const OLDEST_FORMAT_VERSION: u32 = 1;
 
 const EVENTS_HEADER: &str = "t_s,dt_s,command,obs_px";
-const TRUTH_HEADER: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright";
+const TRUTH_HEADER: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright,blew_up";
+const TRUTH_HEADER_V1: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright";
 
 /// A dataset that cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -114,12 +119,13 @@ pub fn write(dir: &Path, recording: &Recording, meta: &DatasetMeta) -> std::io::
         recording.frames.iter().map(|f| {
             let t = &f.truth;
             format!(
-                "{},{},{},{},{}",
+                "{},{},{},{},{},{}",
                 f.end_s(),
                 t.x_mm,
                 t.lateral_mm,
                 t.yaw_rad,
-                u8::from(t.upright)
+                u8::from(t.upright),
+                u8::from(t.blew_up)
             )
         }),
     )?;
@@ -174,19 +180,24 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
         line: e.line(),
         reason: e.to_string(),
     })?;
-    if meta.format_version != FORMAT_VERSION {
+    if !(OLDEST_FORMAT_VERSION..=FORMAT_VERSION).contains(&meta.format_version) {
         return Err(DatasetError::Malformed {
             path: meta_path.display().to_string(),
             line: 0,
             reason: format!(
-                "format version {}, this testbed reads {FORMAT_VERSION}",
+                "format version {}, this testbed reads {OLDEST_FORMAT_VERSION} to {FORMAT_VERSION}",
                 meta.format_version
             ),
         });
     }
     let (events_path, truth_path) = (dir.join("events.csv"), dir.join("truth.csv"));
     let events = rows(&events_path, EVENTS_HEADER)?;
-    let truth = rows(&truth_path, TRUTH_HEADER)?;
+    let truth_header = if meta.format_version == 1 {
+        TRUTH_HEADER_V1
+    } else {
+        TRUTH_HEADER
+    };
+    let truth = rows(&truth_path, truth_header)?;
     let bad = |path: &Path, line: usize, reason: String| DatasetError::Malformed {
         path: path.display().to_string(),
         line,
@@ -236,11 +247,13 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
             ));
         }
         clock_s = t_s + dt_s;
-        let upright = match t[4].as_str() {
-            "1" => true,
-            "0" => false,
-            other => return Err(bad(&truth_path, *tline, format!("upright `{other}`"))),
+        let flag = |column: usize, name: &str| match t.get(column).map(String::as_str) {
+            None => Ok(false),
+            Some("1") => Ok(true),
+            Some("0") => Ok(false),
+            Some(other) => Err(bad(&truth_path, *tline, format!("{name} `{other}`"))),
         };
+        let (upright, blew_up) = (flag(4, "upright")?, flag(5, "blew_up")?);
         frames.push(FrameRecord {
             t_s,
             dt_s,
@@ -251,6 +264,7 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
                 lateral_mm: number(&truth_path, *tline, "lateral_mm", &t[2])?,
                 yaw_rad: number(&truth_path, *tline, "yaw_rad", &t[3])?,
                 upright,
+                blew_up,
             },
         });
     }

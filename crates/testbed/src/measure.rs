@@ -78,6 +78,11 @@ pub struct MeasuredVelocity {
     pub timings_mm_s: Vec<f64>,
     /// Whether the robot stayed upright (torso up-vector z > 0.8) throughout.
     pub upright: bool,
+    /// Whether the physics blew up while it was timed (see
+    /// [`QuadrupedSim::blew_up_at_s`]). Absent, and so false, in the
+    /// references of datasets written before it was measured.
+    #[serde(default)]
+    pub blew_up: bool,
 }
 
 impl MeasuredVelocity {
@@ -159,6 +164,7 @@ pub fn time_command(
         std_mm_s,
         timings_mm_s,
         upright,
+        blew_up: sim.blew_up_at_s().is_some(),
     })
 }
 

@@ -89,21 +89,24 @@ pub fn write_learner_run(dir: &Path, outcome: &TrialOutcome) -> std::io::Result<
     )
 }
 
-/// `measured_action.csv` in `dir`: `command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright`
-/// (the mean of the timings, their spread, and whether the robot stayed upright).
+/// `measured_action.csv` in `dir`:
+/// `command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright,blew_up` (the mean
+/// of the timings, their spread, whether the robot stayed upright and whether
+/// the physics blew up).
 pub fn write_measured_action(dir: &Path, rows: &[MeasuredVelocity]) -> std::io::Result<()> {
     write_csv(
         &dir.join("measured_action.csv"),
-        "command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright",
+        "command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright,blew_up",
         rows.iter().map(|m| {
             format!(
-                "{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{}",
                 m.command,
                 m.velocity_mm_s,
                 m.std_mm_s,
                 m.min_mm_s(),
                 m.max_mm_s(),
-                m.upright
+                m.upright,
+                m.blew_up
             )
         }),
     )

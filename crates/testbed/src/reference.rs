@@ -21,7 +21,7 @@ pub const MEASURE_READINGS: usize = 100;
 /// (3: the patched rapier3d's mass matrix; 4: the camera's own link hides
 /// nothing, and a scaled robot's cadence is found by the walk test; 5: nor
 /// does any link rigidly fixed to it).
-const PROTOCOL_VERSION: u32 = 5;
+const PROTOCOL_VERSION: u32 = 6;
 
 /// The measured models with their spreads, as the protocols give them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -176,6 +176,23 @@ pub enum MeasureError {
         /// Which world: "the scenario's world", or after which change.
         world: String,
     },
+    /// The physics blew up while the stopwatch timed a command (see
+    /// [`quadsim::QuadrupedSim::blew_up_at_s`]): the solver, not the robot,
+    /// threw it about.
+    #[error(
+        "the physics blew up while the stopwatch timed command {command:.1} ({world}): the robot's \
+         kinetic energy passed {factor} times that of its fall from its own height, which no walk \
+         or fall gives, so no reference can be measured. More solver iterations \
+         (`physics.solver_iterations`, e.g. 4) or a shorter physics step (`physics.dt`) may \
+         cure it (README, \"Robots by other makers\")",
+        factor = quadsim::BLOW_UP_ENERGY
+    )]
+    BlewUp {
+        /// The command it blew up at.
+        command: f64,
+        /// Which world: "the scenario's world", or after which change.
+        world: String,
+    },
     /// The camera never saw the beacon at one of the stand-and-read
     /// distances: there is no reading to label.
     #[error(
@@ -198,6 +215,12 @@ pub enum MeasureError {
 /// it is not a measurement: the robot fell while it was timed, or the camera
 /// never saw the beacon at a distance.
 fn check_measured(models: &MeasuredModels, world: &str) -> Result<(), MeasureError> {
+    if let Some(m) = models.action.iter().find(|m| m.blew_up) {
+        return Err(MeasureError::BlewUp {
+            command: m.command,
+            world: world.to_string(),
+        });
+    }
     if let Some(m) = models.action.iter().find(|m| !m.upright) {
         return Err(MeasureError::Fell {
             command: m.command,
@@ -395,6 +418,7 @@ mod tests {
                     std_mm_s: 1.0,
                     timings_mm_s: vec![0.8 * command; 5],
                     upright: true,
+                    blew_up: false,
                 }
             })
             .collect();
@@ -431,6 +455,20 @@ mod tests {
             "{err}"
         );
         assert!(err.to_string().contains("measure_action"), "{err}");
+
+        // A blow-up usually throws the robot over too: it is named as what it is.
+        let mut blew_up = measured();
+        blew_up.action[5].upright = false;
+        blew_up.action[5].blew_up = true;
+        let err = check_measured(&blew_up, "w").expect_err("a blown-up timing");
+        assert!(
+            matches!(&err, MeasureError::BlewUp { command, .. } if *command == -350.0),
+            "{err}"
+        );
+        assert!(
+            err.to_string().contains("physics.solver_iterations"),
+            "{err}"
+        );
 
         let mut unseen = measured();
         unseen.sensor[12].obs_px = f64::NAN;

@@ -90,6 +90,9 @@ pub struct Truth {
     pub yaw_rad: f64,
     /// Whether the torso was upright throughout the frame.
     pub upright: bool,
+    /// Whether the physics had blown up by the frame's end (see
+    /// [`QuadrupedSim::blew_up_at_s`]).
+    pub blew_up: bool,
 }
 
 impl FrameRecord {
@@ -167,6 +170,15 @@ impl Recording {
         self.frames
             .iter()
             .find(|f| !f.truth.upright)
+            .map(FrameRecord::end_s)
+    }
+
+    /// When the physics blew up, s, if it did: the end of the frame in
+    /// which it did.
+    pub fn blew_up_at_s(&self) -> Option<f64> {
+        self.frames
+            .iter()
+            .find(|f| f.truth.blew_up)
             .map(FrameRecord::end_s)
     }
 }
@@ -280,6 +292,7 @@ impl TrialRunner {
                 lateral_mm: 1000.0 * self.sim.lateral_offset_m(),
                 yaw_rad: self.sim.torso().yaw_rad,
                 upright,
+                blew_up: self.sim.blew_up_at_s().is_some(),
             },
         })
     }
@@ -392,6 +405,8 @@ pub struct TrialOutcome {
     pub start: Option<Judgement>,
     /// When the robot was first seen tipped over, s, if it was.
     pub fell_at_s: Option<f64>,
+    /// When the physics blew up, s, if it did.
+    pub blew_up_at_s: Option<f64>,
     /// Simulated seconds per wall-clock second of the recording's physics.
     pub realtime_factor: f64,
     /// When the world changed during the trial, s (see [`Reference::at`]).
@@ -537,6 +552,7 @@ pub fn learn(
         action_model: learner.action_model(),
         sensor_model: learner.sensor_model(),
         fell_at_s: recording.fell_at_s(),
+        blew_up_at_s: recording.blew_up_at_s(),
         realtime_factor: recording.realtime_factor,
         world_changes_s: reference.changes.iter().map(|c| c.0).collect(),
     })
@@ -566,6 +582,10 @@ mod tests {
     use super::*;
 
     fn frame(k: u32, upright: bool) -> FrameRecord {
+        frame_of(k, upright, false)
+    }
+
+    fn frame_of(k: u32, upright: bool, blew_up: bool) -> FrameRecord {
         FrameRecord {
             t_s: 0.05 * f64::from(k),
             dt_s: 0.05,
@@ -576,6 +596,7 @@ mod tests {
                 lateral_mm: 0.0,
                 yaw_rad: 0.0,
                 upright,
+                blew_up,
             },
         }
     }
@@ -594,5 +615,19 @@ mod tests {
         // Frame 4 runs from 0.20 to 0.25 s.
         let at = fell.fell_at_s().expect("fell");
         assert!((at - 0.25).abs() < 1e-12, "{at}");
+        assert_eq!(fell.blew_up_at_s(), None, "a fall is not a blow-up");
+    }
+
+    #[test]
+    fn a_blow_up_is_dated_by_the_end_of_the_frame_it_happened_in() {
+        // Blown up in frame 6 (0.30 to 0.35 s), thrown over in frame 7.
+        let recording = Recording {
+            seed: 0,
+            frames: (0..10).map(|k| frame_of(k, k < 7, k >= 6)).collect(),
+            realtime_factor: f64::NAN,
+        };
+        let at = recording.blew_up_at_s().expect("blew up");
+        assert!((at - 0.35).abs() < 1e-12, "{at}");
+        assert!((recording.fell_at_s().expect("fell") - 0.40).abs() < 1e-12);
     }
 }

@@ -220,7 +220,7 @@ pub(crate) const SETTINGS: [Entry; 23] = [
     Entry {
         key: "physics.solver_iterations",
         kind: Kind::Count,
-        doc: "the constraint solver's iterations a step (1; a heavy robot may need 2)",
+        doc: "the constraint solver's iterations a step (1; more, e.g. 4, if the physics blows up)",
         set: |s, v| {
             s.sim.solver_iterations = count::<usize>(v)?;
             Ok(())

@@ -161,14 +161,19 @@ impl Aggregate {
     }
 
     /// The failed trials as JSON: `[{"seed": 3, "status": "fell at 12.35 s",
-    /// "fell_at_s": 12.35}, {"seed": 9, "status": "no model"}, ...]`.
+    /// "fell_at_s": 12.35}, {"seed": 9, "status": "no model"}, ...]` (a
+    /// blow-up's date is `blew_up_at_s`).
     pub fn failed_json(&self) -> serde_json::Value {
         self.failed
             .iter()
             .map(|(seed, status)| {
                 let mut row = serde_json::json!({"seed": seed, "status": status.to_string()});
-                if let TrialStatus::Fell { at_s: Some(t) } = status {
-                    row["fell_at_s"] = serde_json::json!(t);
+                match status {
+                    TrialStatus::Fell { at_s: Some(t) } => row["fell_at_s"] = serde_json::json!(t),
+                    TrialStatus::BlewUp { at_s: Some(t) } => {
+                        row["blew_up_at_s"] = serde_json::json!(t);
+                    }
+                    _ => {}
                 }
                 row
             })
@@ -338,17 +343,21 @@ mod tests {
             (1, TrialStatus::Fell { at_s: Some(260.1) }, figures(1000.0)),
             (2, TrialStatus::Ok, figures(20.0)),
             (3, TrialStatus::NoModel, Figures::filled(f64::NAN)),
+            (4, TrialStatus::BlewUp { at_s: Some(0.05) }, figures(1e12)),
         ]);
-        assert_eq!((a.trials, a.ok()), (4, 2));
+        assert_eq!((a.trials, a.ok()), (5, 2));
         assert_eq!(a.mean.action_rmse_mm_s, 15.0);
         assert_eq!(
             a.describe(),
-            "2 of 4 trials ok; not in the means: seed 1 (fell at 260.10 s), seed 3 (no model)"
+            "2 of 5 trials ok; not in the means: seed 1 (fell at 260.10 s), seed 3 (no model), \
+             seed 4 (physics blew up at 0.05 s)"
         );
         let failed = a.failed_json();
         assert_eq!(failed[0]["fell_at_s"], serde_json::json!(260.1));
         assert_eq!(failed[1]["status"], "no model");
         assert!(failed[1].get("fell_at_s").is_none());
+        assert_eq!(failed[2]["blew_up_at_s"], serde_json::json!(0.05));
+        assert!(failed[2].get("fell_at_s").is_none());
         let none = Aggregate::of(&[(5, TrialStatus::Diverged, figures(1.0))]);
         assert!(none.mean.action_rmse_mm_s.is_nan());
         assert!(none.median.action_rmse_mm_s.is_nan());

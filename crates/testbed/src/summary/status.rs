@@ -17,6 +17,14 @@ pub enum TrialStatus {
         /// When, s.
         at_s: Option<f64>,
     },
+    /// The physics blew up (see [`quadsim::QuadrupedSim::blew_up_at_s`]):
+    /// the solver, not the robot or the learner, ended the trial; by `at_s`
+    /// (s into the trial, the end of the frame it blew up in) when that is
+    /// known.
+    BlewUp {
+        /// When, s.
+        at_s: Option<f64>,
+    },
     /// A model was never determined by the data.
     NoModel,
     /// Both models exist but an error is not finite.
@@ -26,11 +34,14 @@ pub enum TrialStatus {
 }
 
 impl TrialStatus {
-    /// The status of a finished trial: a fall first, then a missing model, then
-    /// non-finite errors.
+    /// The status of a finished trial: a blow-up first (it usually throws the
+    /// robot over too), then a fall, then a missing model, then non-finite
+    /// errors.
     pub fn of(outcome: &TrialOutcome) -> Self {
         let j = &outcome.last;
-        if let Some(at_s) = outcome.fell_at_s {
+        if let Some(at_s) = outcome.blew_up_at_s {
+            Self::BlewUp { at_s: Some(at_s) }
+        } else if let Some(at_s) = outcome.fell_at_s {
             Self::Fell { at_s: Some(at_s) }
         } else if outcome.action_model.is_none() || outcome.sensor_model.is_none() {
             Self::NoModel
@@ -51,19 +62,25 @@ impl TrialStatus {
 
     /// Reads back what [`Display`](std::fmt::Display) wrote.
     pub fn parse(text: &str) -> Self {
+        let dated = |prefix: &str| {
+            let at = text.strip_prefix(prefix)?.strip_suffix(" s")?;
+            at.parse::<f64>().ok()
+        };
         match text {
             "ok" => Self::Ok,
             "fell" => Self::Fell { at_s: None },
-            fell if fell.starts_with("fell at ") && fell.ends_with(" s") => {
-                let at = &fell["fell at ".len()..fell.len() - " s".len()];
-                match at.parse::<f64>() {
-                    Ok(at_s) => Self::Fell { at_s: Some(at_s) },
-                    Err(_) => Self::Error(fell.into()),
-                }
-            }
+            "physics blew up" => Self::BlewUp { at_s: None },
             "no model" => Self::NoModel,
             "diverged" => Self::Diverged,
-            other => Self::Error(other.strip_prefix("error: ").unwrap_or(other).into()),
+            _ => {
+                if let Some(at_s) = dated("fell at ") {
+                    Self::Fell { at_s: Some(at_s) }
+                } else if let Some(at_s) = dated("physics blew up at ") {
+                    Self::BlewUp { at_s: Some(at_s) }
+                } else {
+                    Self::Error(text.strip_prefix("error: ").unwrap_or(text).into())
+                }
+            }
         }
     }
 }
@@ -75,6 +92,8 @@ impl std::fmt::Display for TrialStatus {
             Self::Fell { at_s: None } => f.write_str("fell"),
             // To the hundredth of a second (frames come every 50 ms).
             Self::Fell { at_s: Some(t) } => write!(f, "fell at {t:.2} s"),
+            Self::BlewUp { at_s: None } => f.write_str("physics blew up"),
+            Self::BlewUp { at_s: Some(t) } => write!(f, "physics blew up at {t:.2} s"),
             Self::NoModel => f.write_str("no model"),
             Self::Diverged => f.write_str("diverged"),
             Self::Error(e) => write!(f, "error: {e}"),
@@ -92,6 +111,8 @@ mod tests {
             TrialStatus::Ok,
             TrialStatus::Fell { at_s: None },
             TrialStatus::Fell { at_s: Some(260.1) },
+            TrialStatus::BlewUp { at_s: None },
+            TrialStatus::BlewUp { at_s: Some(0.05) },
             TrialStatus::NoModel,
             TrialStatus::Diverged,
             TrialStatus::Error("the learner refused an event".into()),

@@ -1,0 +1,35 @@
+//! A physics blow-up is told from a walk or a fall by the robot's kinetic
+//! energy (`QuadrupedSim::blew_up_at_s`): walking, the ERS-7 stays far below
+//! the line. (That a real blow-up crosses it is checked on the published
+//! ANYmal C, by `scripts/public_robots.sh` in CI.)
+
+use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+
+/// The peak kinetic energy over `seconds` at `command`, as a share of the
+/// blow-up line, and when the physics blew up, if it did.
+fn peak_share(urdf: &str, command: f64, seconds: f64) -> (f64, Option<f64>) {
+    let d = RobotDescription::from_urdf_str(urdf).expect("urdf");
+    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    sim.advance(0.5);
+    sim.set_command(command).expect("finite");
+    let mut peak = 0.0_f64;
+    let steps = (seconds / sim.config().dt_s).round() as usize;
+    for _ in 0..steps {
+        sim.step();
+        let energy = sim.kinetic_energy_j();
+        assert!(energy.is_finite() && energy >= 0.0, "{energy} J");
+        peak = peak.max(energy);
+    }
+    assert!(sim.is_upright());
+    (peak / sim.blow_up_energy_j(), sim.blew_up_at_s())
+}
+
+#[test]
+fn walking_either_way_at_full_speed_is_far_below_a_blow_up() {
+    for command in [300.0, -300.0, 0.0] {
+        let (share, blew_up) = peak_share(ERS7_URDF, command, 20.0);
+        assert_eq!(blew_up, None, "command {command}");
+        // The walk moves: its energy is not zero, but a small part of the line.
+        assert!(share > 1e-5 && share < 0.02, "command {command}: {share}");
+    }
+}
