@@ -223,7 +223,7 @@ impl RobotDescription {
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
         let root_link = check_tree(&urdf)?;
-        let urdf = crate::point_mass::fold_point_masses(&urdf);
+        let urdf = crate::fold::fold_degenerate_links(&urdf);
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;
@@ -250,25 +250,29 @@ impl RobotDescription {
                     reason: format!("mass {m} kg"),
                 });
             }
-            if ![i.ixx, i.iyy, i.izz]
-                .iter()
-                .all(|v| v.is_finite() && *v > 0.0)
-            {
-                // A point mass fixed to a link was folded into it above.
-                let point = [i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz] == [0.0; 6];
+            if !crate::fold::is_body_inertia(i) {
+                // Mass on a fixed joint was folded into the body it rides on
+                // above; this link's has nowhere to go.
+                let [a, b, c] = crate::fold::principal_moments(i);
+                let fixed = |j: &&urdf_rs::Joint| matches!(j.joint_type, urdf_rs::JointType::Fixed);
+                let why = match urdf.joints.iter().find(|j| j.child.link == link.name) {
+                    Some(j) if !fixed(&j) => format!("it moves (joint `{}`)", j.name),
+                    _ => "no link fixed to it has a body's inertia to take its mass".into(),
+                };
                 return Err(RobotError::BadInertia {
                     link: link.name.clone(),
                     reason: format!(
-                        "principal inertia ({}, {}, {}){}",
+                        "principal moments of inertia ({a:.3e}, {b:.3e}, {c:.3e}) kg m^2 from \
+                         ixx {} ixy {} ixz {} iyy {} iyz {} izz {}: no rigid body's (each must be \
+                         positive and the smallest over {:e} of the largest). Mass with such an \
+                         inertia is folded into the link it is fixed to, but {why}",
                         i.ixx,
+                        i.ixy,
+                        i.ixz,
                         i.iyy,
+                        i.iyz,
                         i.izz,
-                        if point {
-                            ": a point mass is taken only on a fixed joint, folded into the \
-                             link it rides on; one that moves needs its moments"
-                        } else {
-                            ""
-                        }
+                        crate::fold::MIN_MOMENT_RATIO
                     ),
                 });
             }

@@ -1,7 +1,6 @@
 //! A physics blow-up is told from a walk or a fall by the robot's kinetic
 //! energy (`QuadrupedSim::blew_up_at_s`): walking, the ERS-7 stays far below
-//! the line. (That a real blow-up crosses it is checked on the published
-//! ANYmal C, by `scripts/public_robots.sh` in CI.)
+//! the line, and a body with a singular inertia blows up across it.
 
 use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
 
@@ -32,4 +31,24 @@ fn walking_either_way_at_full_speed_is_far_below_a_blow_up() {
         // The walk moves: its energy is not zero, but a small part of the line.
         assert!(share > 1e-5 && share < 0.02, "command {command}: {share}");
     }
+}
+
+/// A body whose inertia is singular (every entry alike, as ANYmal C's
+/// `hatch` was published) blows the physics up. The loader folds such mass
+/// into the body it is fixed to, and refuses a moving link with it, so the
+/// description is altered after loading, to make the blow-up the line must
+/// see.
+#[test]
+fn a_body_with_a_singular_inertia_blows_up_and_the_line_sees_it() {
+    let mut d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
+    let shank = d.urdf.links.iter_mut().find(|l| l.name == "fl_shank");
+    let i = &mut shank.expect("fl_shank").inertial.inertia;
+    (i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz) = (2e-5, 2e-5, 2e-5, 2e-5, 2e-5, 2e-5);
+    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    sim.advance(0.5);
+    sim.set_command(300.0).expect("finite");
+    sim.advance(4.0);
+    let at = sim.blew_up_at_s().expect("the physics blew up");
+    assert!(at > 0.5 && at <= sim.time_s(), "{at}");
+    assert!(!sim.is_upright());
 }

@@ -1,6 +1,7 @@
 //! What published URDFs are made of, taken as they are: a foot that is a
 //! link of any shape fixed below the shank (not a sphere), a point mass on a
-//! fixed joint (an IMU with mass and no inertia), a mesh named by a
+//! fixed joint (an IMU with mass and no inertia), a cover whose inertia is
+//! singular, a mesh named by a
 //! `package://` path from a package that holds many robots, and a binary STL
 //! whose header begins with "solid".
 
@@ -100,6 +101,63 @@ fn a_point_mass_on_a_fixed_joint_is_folded_into_its_parent() {
     let with_imu = RobotDescription::from_urdf_str(&text).expect("loads");
     assert!((with_imu.total_mass_kg - ers7.total_mass_kg - 0.018).abs() < 1e-12);
     walks(&with_imu);
+}
+
+/// A cover as ANYmal C's `hatch` is published: 142 g whose inertia is every
+/// entry 0.001, a singular tensor no body has. Fixed to the torso, it is
+/// folded into it, and the robot walks without its physics blowing up. (As
+/// a body of its own it threw the ANYmal C over; the ERS-7, with it as a
+/// body, happens not to blow up in these 4 s.)
+#[test]
+fn a_cover_with_a_singular_inertia_is_folded_into_the_body_it_is_fixed_to() {
+    let hatch = r#"<link name="hatch"><inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="0.142"/>
+    <inertia ixx="0.001" ixy="0.001" ixz="0.001" iyy="0.001" iyz="0.001" izz="0.001"/></inertial></link>
+  <joint name="hatch_fixed" type="fixed"><parent link="torso"/><child link="hatch"/>
+    <origin xyz="-0.05 0 0.04" rpy="0 0 0"/></joint>
+</robot>"#;
+    let text = ERS7_URDF.replacen("</robot>", hatch, 1);
+    let ers7 = RobotDescription::from_urdf_str(ERS7_URDF).expect("the ERS-7");
+    let with_hatch = RobotDescription::from_urdf_str(&text).expect("loads");
+    assert!((with_hatch.total_mass_kg - ers7.total_mass_kg - 0.142).abs() < 1e-12);
+    // The hatch is a massless frame, its mass in the torso's body.
+    let mass = |d: &RobotDescription, link: &str| {
+        let l = d.urdf.links.iter().find(|l| l.name == link).expect(link);
+        l.inertial.mass.value
+    };
+    assert_eq!(mass(&with_hatch, "hatch"), 0.0);
+    assert!((mass(&with_hatch, "torso") - mass(&ers7, "torso") - 0.142).abs() < 1e-12);
+    let mut sim = QuadrupedSim::new(&with_hatch, SimConfig::default()).expect("a world");
+    sim.advance(1.0);
+    sim.set_command(-300.0).expect("finite");
+    sim.advance(3.0);
+    assert_eq!(sim.blew_up_at_s(), None);
+    assert!(sim.is_upright());
+    assert!(sim.distance_along_line_m() > SimConfig::default().start_distance_m + 0.1);
+}
+
+/// A link that moves by its own joint cannot pass mass with an inertia no
+/// body has to anything: the robot is refused, naming the link.
+#[test]
+fn a_moving_link_with_a_singular_inertia_is_refused_naming_it() {
+    let shank =
+        r#"<inertia ixx="2.200e-05" ixy="0" ixz="0" iyy="2.200e-05" iyz="0" izz="3.000e-06"/>"#;
+    assert!(ERS7_URDF.contains(shank));
+    let text = ERS7_URDF.replacen(
+        shank,
+        r#"<inertia ixx="2e-05" ixy="2e-05" ixz="2e-05" iyy="2e-05" iyz="2e-05" izz="2e-05"/>"#,
+        1,
+    );
+    let err = RobotDescription::from_urdf_str(&text).expect_err("refused");
+    let text = err.to_string();
+    assert!(
+        matches!(err, quadsim::RobotError::BadInertia { .. }),
+        "{text}"
+    );
+    assert!(
+        text.contains("fl_shank") && text.contains("principal moments"),
+        "{text}"
+    );
+    assert!(text.contains("it moves (joint `fl_knee`)"), "{text}");
 }
 
 #[test]

@@ -127,6 +127,9 @@ fn span(values: impl Iterator<Item = f64>) -> f64 {
 pub fn key(scenario: &Scenario) -> String {
     let mut h = std::collections::hash_map::DefaultHasher::new();
     scenario.urdf_text.hash(&mut h);
+    // The robot as loaded (mass folded across fixed joints, say): a change
+    // in how a URDF is read is a change of robot.
+    format!("{:?}", scenario.description.urdf).hash(&mut h);
     if let Some((_, robot_text)) = &scenario.robot_file {
         robot_text.hash(&mut h);
     }
