@@ -3,17 +3,33 @@
 //! bit. A change meant to leave the physics alone (a faster code path, a
 //! refactor) must print the same lines before and after it.
 //!
-//! `cargo run --release --example fingerprint`
+//! `cargo run --release --example fingerprint [-- --multibody NAME]`
+//!
+//! (`--multibody`: `physics.multibody`, the default's if not given.)
 //!
 //! The expected lines are `tests/fixtures/fingerprint.txt`, and `.ci/run`
 //! fails on any difference: a change that alters the physics updates that
 //! file in the same commit and says so.
 
-use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+use clap::Parser;
+use quadsim::{ERS7_URDF, MultibodyDynamics, QuadrupedSim, RobotDescription, SimConfig};
+
+/// Hash 24 s of the default robot's poses and readings, bit for bit.
+#[derive(Debug, Parser)]
+struct Args {
+    /// How the multibody is stepped (`physics.multibody`: tree, rapier); the default's if not given.
+    #[arg(long, value_parser = MultibodyDynamics::parse)]
+    multibody: Option<MultibodyDynamics>,
+}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args = Args::parse();
     let description = RobotDescription::from_urdf_str(ERS7_URDF)?;
-    let mut sim = QuadrupedSim::new(&description, SimConfig::default())?;
+    let mut config = SimConfig::default();
+    if let Some(multibody) = args.multibody {
+        config.multibody = multibody;
+    }
+    let mut sim = QuadrupedSim::new(&description, config)?;
     let mut hash = 0u64;
     for (k, command) in [0.0, 300.0, -200.0, 120.0, -300.0, 50.0]
         .into_iter()

@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use anyhow::Result;
 use clap::Parser;
-use quadsim::{QuadrupedSim, RobotDescription, RobotFile, SimConfig};
+use quadsim::{MultibodyDynamics, QuadrupedSim, RobotDescription, RobotFile, SimConfig};
 
 /// Record a walk's servo targets for a peer simulator, and time this build on it.
 #[derive(Debug, Parser)]
@@ -98,14 +98,29 @@ fn main() -> Result<()> {
     })?;
     targets.flush()?;
 
-    // The same motion, timed.
-    let mut best = f64::INFINITY;
-    for _ in 0..args.repeats.max(1) {
-        let started = Instant::now();
-        run(&d, config, &args, |_| {})?;
-        best = best.min(started.elapsed().as_secs_f64());
+    // The same motion, timed, with each `physics.multibody` (the robot's own first).
+    let mut timed = Vec::new();
+    let mut order = vec![config.multibody];
+    order.extend(
+        MultibodyDynamics::NAMES
+            .iter()
+            .filter_map(|n| MultibodyDynamics::parse(n).ok())
+            .filter(|m| *m != config.multibody),
+    );
+    for multibody in order {
+        let config = SimConfig {
+            multibody,
+            ..config
+        };
+        let mut best = f64::INFINITY;
+        for _ in 0..args.repeats.max(1) {
+            let started = Instant::now();
+            run(&d, config, &args, |_| {})?;
+            best = best.min(started.elapsed().as_secs_f64());
+        }
+        timed.push((multibody.as_str(), 1e6 * best / steps as f64));
     }
-    let us_per_step = 1e6 * best / steps as f64;
+    let us_per_step = timed[0].1;
     let joints: Vec<&str> = d
         .legs
         .iter()
@@ -136,16 +151,22 @@ fn main() -> Result<()> {
         "steps": steps,
         "upright": upright,
         "travelled_m": end_x - torso.position_m[0],
+        "multibody": timed[0].0,
         "us_per_step": us_per_step,
+        "us_per_step_by_multibody": timed.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),
         "contacts_per_step": contacts as f64 / steps as f64,
     });
     std::fs::write(
         args.out.join("peer.json"),
         serde_json::to_string_pretty(&peer)?,
     )?;
+    for (name, us) in &timed[1..] {
+        println!("this build with physics.multibody = {name}: {us:.1} us per full step");
+    }
     println!(
-        "this build: {us_per_step:.1} us per full step (best of {}), {:.0}x real time, {:.2} \
+        "this build ({}): {us_per_step:.1} us per full step (best of {}), {:.0}x real time, {:.2} \
          contact points per step, {steps} steps, upright {upright}, walked {:.2} m; motion in {}",
+        timed[0].0,
         args.repeats,
         config.dt_s * 1e6 / us_per_step,
         contacts as f64 / steps as f64,

@@ -316,3 +316,24 @@ fn the_solver_iterations_are_a_setting_checked_and_written_back() {
         "physics.solver_iterations",
     );
 }
+
+#[test]
+fn the_multibody_dynamics_is_a_setting_checked_and_written_back() {
+    let base = Scenario::paper().expect("paper");
+    for name in quadsim::MultibodyDynamics::NAMES {
+        let s = Scenario::from_settings(None, None, &[format!("physics.multibody={name}")])
+            .expect("a multibody dynamics");
+        assert_eq!(s.sim.multibody.as_str(), name);
+        assert_eq!(
+            s.reference_key() == base.reference_key(),
+            s.sim.multibody == base.sim.multibody,
+            "the reference depends on it"
+        );
+        reads_back(&s);
+    }
+    refused(
+        "[physics]\nmultibody = \"featherstone\"\n",
+        "physics.multibody",
+    );
+    refused("[physics]\nmultibody = 2\n", "physics.multibody");
+}

@@ -8,6 +8,56 @@ use crate::servo::ServoConfig;
 use crate::vision::CameraConfig;
 use crate::walk::WalkConfig;
 
+/// How the physics steps the robot's multibody each step (`physics.multibody`).
+/// Both are rapier's multibody with its constraint solver; they differ in the
+/// free motion's integrator and in the linear algebra (`vendor/PATCH.md`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum MultibodyDynamics {
+    /// The mass matrix by the composite-rigid-body algorithm, factored once a
+    /// step along the kinematic tree, its inverse serving every constraint
+    /// row; Coriolis and gyroscopic forces explicit, as MuJoCo's
+    /// `implicitfast` integrator has them (joint damping implicit in both).
+    Tree,
+    /// rapier's own: the mass matrix summed as `J^T M J` over the links,
+    /// with the Coriolis and gyroscopic forces linearised into it over the
+    /// step (semi-implicit), factored by dense LU.
+    #[default]
+    Rapier,
+}
+
+impl MultibodyDynamics {
+    /// Every value, as a scenario file writes it.
+    pub const NAMES: [&'static str; 2] = ["tree", "rapier"];
+
+    /// The value of a scenario file's `physics.multibody`.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        match text {
+            "tree" => Ok(Self::Tree),
+            "rapier" => Ok(Self::Rapier),
+            other => Err(format!(
+                "`{other}` is not a multibody dynamics: one of {}",
+                Self::NAMES.join(", ")
+            )),
+        }
+    }
+
+    /// As a scenario file writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Tree => "tree",
+            Self::Rapier => "rapier",
+        }
+    }
+
+    /// rapier's setting.
+    pub(crate) fn rapier(self) -> rapier3d::dynamics::MultibodyDynamics {
+        match self {
+            Self::Tree => rapier3d::dynamics::MultibodyDynamics::Tree,
+            Self::Rapier => rapier3d::dynamics::MultibodyDynamics::ImplicitCoriolis,
+        }
+    }
+}
+
 /// Settings of one simulated world.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SimConfig {
@@ -15,6 +65,8 @@ pub struct SimConfig {
     pub dt_s: f64,
     /// Velocity-solver iterations per step.
     pub solver_iterations: usize,
+    /// How the robot's multibody is stepped (`physics.multibody`).
+    pub multibody: MultibodyDynamics,
     /// Coulomb friction of the feet and floor.
     pub friction: f64,
     /// Viscous damping on every rotational degree of freedom of the robot (its
@@ -45,6 +97,7 @@ impl Default for SimConfig {
             // about 1 %, at twice the speed; 8 ms changes the physics visibly.
             dt_s: 0.004,
             solver_iterations: 1,
+            multibody: MultibodyDynamics::Rapier,
             friction: 0.9,
             joint_damping_nm_s_per_rad: 0.1,
             servo: ServoConfig::default(),
@@ -187,12 +240,13 @@ impl SimConfig {
     pub fn check_live_change(&self, new: &SimConfig) -> Result<(), SimConfigError> {
         new.validate()?;
         let (a, b) = (self, new);
-        let fixed: [(&'static str, bool); 12] = [
+        let fixed: [(&'static str, bool); 13] = [
             ("physics.dt", a.dt_s == b.dt_s),
             (
                 "physics.solver_iterations",
                 a.solver_iterations == b.solver_iterations,
             ),
+            ("physics.multibody", a.multibody == b.multibody),
             (
                 "physics.joint_damping",
                 a.joint_damping_nm_s_per_rad == b.joint_damping_nm_s_per_rad,

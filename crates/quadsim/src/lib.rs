@@ -31,7 +31,7 @@ pub mod sim;
 pub mod vision;
 pub mod walk;
 
-pub use config::SimConfig;
+pub use config::{MultibodyDynamics, SimConfig};
 pub use description::{LEG_NAMES, RobotDescription};
 pub use error::{RobotError, SimConfigError, SimError};
 pub use robot_file::RobotFile;

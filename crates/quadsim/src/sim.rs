@@ -292,13 +292,15 @@ impl QuadrupedSim {
     }
 
     /// Sets the damping of every rotational degree of freedom (those rapier
-    /// damps by default) to the configured value.
+    /// damps by default) to the configured value, and how the multibody is
+    /// stepped.
     fn set_joint_damping(&mut self) {
         let damping = self.config.joint_damping_nm_s_per_rad as Real;
         if let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) {
             for d in mb.damping_mut().iter_mut().filter(|d| **d != 0.0) {
                 *d = damping;
             }
+            mb.set_dynamics(self.config.multibody.rapier());
         }
     }
 

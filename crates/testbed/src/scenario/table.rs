@@ -61,7 +61,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 23] = [
+pub(crate) const SETTINGS: [Entry; 24] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -226,6 +226,17 @@ pub(crate) const SETTINGS: [Entry; 23] = [
             Ok(())
         },
         get: |s| toml::Value::Integer(s.sim.solver_iterations.try_into().unwrap_or(i64::MAX)),
+    },
+    Entry {
+        key: "physics.multibody",
+        kind: Kind::Text,
+        doc: "how the robot's multibody is stepped: tree (composite rigid bodies, factored along \
+              the tree, Coriolis explicit), rapier (rapier's own, Coriolis semi-implicit)",
+        set: |s, v| {
+            s.sim.multibody = quadsim::MultibodyDynamics::parse(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.sim.multibody.as_str().into()),
     },
 ];
 

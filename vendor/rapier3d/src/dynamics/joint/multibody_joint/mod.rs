@@ -1,7 +1,7 @@
 //! MultibodyJoints using the reduced-coordinates formalism or using constraints.
 
 #[cfg(feature = "alloc")]
-pub use self::multibody::{MassLu, Multibody, MultibodyDofCoupling};
+pub use self::multibody::{MassLu, Multibody, MultibodyDofCoupling, MultibodyDynamics};
 #[cfg(feature = "alloc")]
 pub use self::multibody_ik::InverseKinematicsOption;
 #[cfg(feature = "alloc")]
@@ -28,6 +28,8 @@ mod multibody_workspace;
 
 #[cfg(feature = "alloc")]
 mod multibody_ik;
+#[cfg(feature = "alloc")]
+mod tree_ldl;
 #[cfg(feature = "alloc")]
 mod multibody_joint;
 #[cfg(feature = "alloc")]

@@ -1,5 +1,6 @@
 use super::multibody_link::{MultibodyLink, MultibodyLinkVec};
 use super::multibody_workspace::MultibodyWorkspace;
+use super::tree_ldl::TreeLdl;
 use crate::alloc_prelude::*;
 use crate::dynamics::integration_parameters::SpringCoefficients;
 use crate::dynamics::solver::{GenericJointConstraint, WritebackId};
@@ -54,6 +55,10 @@ fn concat_rb_mass_matrix(mass: Vector, inertia: Real) -> SMatrix<Real, SPATIAL_D
 /// same pivots, the same row swaps, the same eliminations in the same order,
 /// so the same bits), on raw column-major storage instead of a view per column
 /// and without the copy into a fresh matrix that `LU::new` takes by value.
+///
+/// With [`MultibodyDynamics::Tree`], the same type holds instead the
+/// `L^T D L` factors of the mass matrix that follow the kinematic tree
+/// (`tree_ldl.rs`), and [`MassLu::solve_mut`] solves with those.
 #[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
 #[derive(Clone, Debug)]
 pub struct MassLu {
@@ -61,6 +66,9 @@ pub struct MassLu {
     lu: DMatrix<Real>,
     /// The row transpositions, in the order nalgebra's permutation sequence applies them.
     swaps: Vec<(usize, usize)>,
+    /// The factors along the tree, when they are the ones in use.
+    #[cfg_attr(feature = "serde-serialize", serde(skip))]
+    tree: Option<TreeLdl>,
 }
 
 impl MassLu {
@@ -68,16 +76,27 @@ impl MassLu {
         Self {
             lu: DMatrix::zeros(0, 0),
             swaps: Vec::new(),
+            tree: None,
         }
     }
 
     /// The dimension of the factored matrix.
     pub fn dim(&self) -> usize {
-        self.lu.nrows()
+        match &self.tree {
+            Some(tree) => tree.dim(),
+            None => self.lu.nrows(),
+        }
+    }
+
+    /// Factors the top-left `dim x dim` block of the symmetric positive
+    /// definite `m` as `L^T D L`, from the last coordinate to the first.
+    fn factor_tree(&mut self, m: &DMatrix<Real>, dim: usize) {
+        self.tree.get_or_insert_with(TreeLdl::default).factor(m, dim);
     }
 
     /// Factors the top-left `dim x dim` block of `m`.
     fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+        self.tree = None;
         if self.lu.nrows() != dim {
             self.lu = DMatrix::zeros(dim, dim);
         }
@@ -148,6 +167,32 @@ pub(crate) fn lu_solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
     const MAX_DIM: usize = 64;
     let n = lu.dim();
     assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
+    if let Some(tree) = &lu.tree {
+        let mut solved = true;
+        if n <= MAX_DIM {
+            let mut x = [0.0 as Real; MAX_DIM];
+            for c in 0..b.ncols() {
+                for (i, xi) in x[..n].iter_mut().enumerate() {
+                    *xi = b[(i, c)];
+                }
+                solved &= tree.solve(&mut x[..n]);
+                for (i, xi) in x[..n].iter().enumerate() {
+                    b[(i, c)] = *xi;
+                }
+            }
+        } else {
+            let mut x = Vec::with_capacity(n);
+            for c in 0..b.ncols() {
+                x.clear();
+                x.extend((0..n).map(|i| b[(i, c)]));
+                solved &= tree.solve(&mut x);
+                for (i, xi) in x.iter().enumerate() {
+                    b[(i, c)] = *xi;
+                }
+            }
+        }
+        return solved;
+    }
     for &(i, i2) in &lu.swaps {
         b.swap_rows(i, i2);
     }
@@ -263,6 +308,27 @@ fn sparse_quadform_pair(
             out2[(a, b)] += spatial_dot(ja, &extra[SPATIAL_DIM * b..]);
         }
     }
+}
+
+/// PATCH (scasm-testbed): how a multibody's free motion and its constraints'
+/// responses are computed each step.
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub enum MultibodyDynamics {
+    /// rapier's: the free acceleration solves with the mass matrix augmented
+    /// with the Coriolis and gyroscopic forces linearised over the step
+    /// (semi-implicit, with an energy guard falling back to the plain mass
+    /// matrix), and both matrices are factored by dense LU every step.
+    #[default]
+    ImplicitCoriolis,
+    /// The Coriolis and gyroscopic forces explicit (as MuJoCo's `implicitfast`
+    /// integrator treats them; joint damping, armature and springs stay
+    /// implicit on the diagonal, as in `ImplicitCoriolis`), so that the free
+    /// motion and every constraint row solve with one symmetric positive
+    /// definite matrix, factored once a step as `L^T D L` along the kinematic
+    /// tree (no fill-in, no pivoting) and solved in time proportional to the
+    /// (coordinate, ancestor) pairs instead of the square of the coordinates.
+    Tree,
 }
 
 /// PATCH (scasm-testbed): nalgebra's dot product of two 6-vectors, in its
@@ -382,6 +448,9 @@ pub struct Multibody {
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
     mj_workspace: Vec<[Real; 3 * DIM]>,
+    /// PATCH (scasm-testbed): how the free motion and the constraints'
+    /// responses are computed (see [`MultibodyDynamics`]).
+    dynamics: MultibodyDynamics,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -410,6 +479,7 @@ impl Multibody {
             acc_augmented_mass: DMatrix::zeros(0, 0),
             acc_inv_augmented_mass: MassLu::empty(),
             augmented_mass_indices: IndexSequence::new(),
+            dynamics: MultibodyDynamics::default(),
             ndofs: 0,
             solver_id: 0,
             workspace: MultibodyWorkspace::new(),
@@ -661,6 +731,18 @@ impl Multibody {
             .map(|link| &mut link.joint.data.motors[axis as usize])
     }
 
+    /// PATCH (scasm-testbed): how this multibody's free motion and its
+    /// constraints' responses are computed (see [`MultibodyDynamics`]).
+    pub fn dynamics(&self) -> MultibodyDynamics {
+        self.dynamics
+    }
+
+    /// PATCH (scasm-testbed): sets how this multibody's free motion and its
+    /// constraints' responses are computed, from the next step on.
+    pub fn set_dynamics(&mut self, dynamics: MultibodyDynamics) {
+        self.dynamics = dynamics;
+    }
+
     /// The number of links on this multibody.
     pub fn num_links(&self) -> usize {
         self.links.len()
@@ -803,7 +885,8 @@ impl Multibody {
         // occasionally cause instabilities due to the matrix being near singular.
         // To prevent that, we enable a check that verifies the result and fallbacks
         // to the explicit term if needed
-        let check_implicit_coriolis_divergence = dt * self.velocities.amax() >= 1.0e-3;
+        let tree = self.dynamics == MultibodyDynamics::Tree;
+        let check_implicit_coriolis_divergence = !tree && dt * self.velocities.amax() >= 1.0e-3;
         // Generalized forces that derive from positions or external inputs
         // (gravity, user forces, spring position terms).
         let mut pos_forces = DVector::zeros(if check_implicit_coriolis_divergence {
@@ -918,9 +1001,16 @@ impl Multibody {
             DVector::zeros(0)
         };
 
+        // PATCH (scasm-testbed): with explicit Coriolis forces, the free
+        // motion solves with the matrix the constraints use.
+        let factors = if tree {
+            &self.inv_augmented_mass
+        } else {
+            &self.acc_inv_augmented_mass
+        };
         self.augmented_mass_indices
             .with_rearranged_rows_mut(&mut self.accelerations, |accs| {
-                lu_solve_mut(&self.acc_inv_augmented_mass, accs);
+                lu_solve_mut(factors, accs);
             });
 
         if check_implicit_coriolis_divergence {
@@ -1131,6 +1221,10 @@ impl Multibody {
     pub(crate) fn update_mass_matrix(&mut self, dt: Real, bodies: &RigidBodySet) {
         if self.ndofs == 0 {
             return; // Nothing to do.
+        }
+        if self.dynamics == MultibodyDynamics::Tree {
+            self.update_mass_matrix_tree(dt, bodies);
+            return;
         }
 
         if self.augmented_mass.ncols() != self.ndofs {
@@ -1391,6 +1485,143 @@ impl Multibody {
             .factor(&self.acc_augmented_mass, effective_dim);
         self.inv_augmented_mass
             .factor(&self.augmented_mass, effective_dim);
+    }
+
+    /// PATCH (scasm-testbed): [`MultibodyDynamics::Tree`]'s mass matrix (with
+    /// damping, armature and springs on its diagonal as in
+    /// [`Self::update_mass_matrix`]), factored along the tree. The matrix with
+    /// the Coriolis terms is not assembled.
+    fn update_mass_matrix_tree(&mut self, dt: Real, bodies: &RigidBodySet) {
+        if self.augmented_mass.ncols() != self.ndofs {
+            self.augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
+        } else {
+            self.augmented_mass.fill(0.0);
+        }
+        self.augmented_mass_indices.clear();
+        for link in self.links.iter() {
+            let range = link.assembly_id..link.assembly_id + link.joint.ndofs();
+            if link.joint.kinematic {
+                range.for_each(|k| self.augmented_mass_indices.remove(k));
+            } else {
+                range.for_each(|k| self.augmented_mass_indices.keep(k));
+            }
+        }
+
+        self.composite_rigid_body_mass_matrix(bodies);
+
+        let dt2 = dt * dt;
+        for link in self.links.iter() {
+            let mut idx = link.assembly_id;
+            let locked = link.joint.data.locked_axes.bits();
+            for a in 0..SPATIAL_DIM {
+                if (locked >> a) & 1 == 0 {
+                    let k = link.joint.spring_stiffness[a];
+                    self.augmented_mass[(idx, idx)] +=
+                        self.damping[idx] * dt + self.armature[idx] + k * dt2;
+                    idx += 1;
+                }
+            }
+        }
+
+        // Removing kinematic coordinates keeps the others' order (parents first).
+        let effective_dim = self
+            .augmented_mass_indices
+            .dim_after_removal(self.augmented_mass.nrows());
+        self.augmented_mass_indices
+            .rearrange_columns(&mut self.augmented_mass, true);
+        self.augmented_mass_indices
+            .rearrange_rows(&mut self.augmented_mass, true);
+        self.inv_augmented_mass
+            .factor_tree(&self.augmented_mass, effective_dim);
+    }
+
+    /// PATCH (scasm-testbed): adds the joint-space mass matrix `sum J^T M J`
+    /// over the links to `self.augmented_mass`, by the composite-rigid-body
+    /// algorithm (Featherstone 2008, section 6.2) in world coordinates: every
+    /// spatial quantity is taken about one point `o` (the root's centre of
+    /// mass), so that a subtree's inertia is the plain sum of its links' and a
+    /// coordinate's force needs no transform on its way up the tree. Entry
+    /// `(k, j)`, for `j` an ancestor of `k` or `k` itself, is `s_j . (I_k s_k)`
+    /// with `s` a coordinate's motion about `o` (from its link's body
+    /// jacobian) and `I_k` the inertia of the subtree it moves; the others are
+    /// zero.
+    fn composite_rigid_body_mass_matrix(&mut self, bodies: &RigidBodySet) {
+        /// A subtree's inertia about `o`: mass, first moment, rotational inertia.
+        #[derive(Copy, Clone)]
+        struct Composite {
+            mass: Real,
+            moment: na::Vector3<Real>,
+            inertia: na::Matrix3<Real>,
+        }
+        let o = vect_to_na(bodies[self.links[0].rigid_body].mprops.world_com);
+        let mut composite: Vec<Composite> = Vec::with_capacity(self.links.len());
+        for link in self.links.iter() {
+            let rb = &bodies[link.rigid_body];
+            // The effective masses of a multibody link are isotropic (no locked axes).
+            let mass = rb.mprops.effective_mass().x;
+            let r = vect_to_na(rb.mprops.world_com) - o;
+            let inertia = mat_to_na(rb.mprops.effective_angular_inertia().into_matrix())
+                + (na::Matrix3::identity() * r.norm_squared() - r * r.transpose()) * mass;
+            composite.push(Composite {
+                mass,
+                moment: r * mass,
+                inertia,
+            });
+        }
+        for i in (1..self.links.len()).rev() {
+            let (child, parent) = (composite[i], self.links[i].parent_internal_id);
+            let c = &mut composite[parent];
+            c.mass += child.mass;
+            c.moment += child.moment;
+            c.inertia += child.inertia;
+        }
+        // Each coordinate's motion about o.
+        let n = self.ndofs;
+        let mut motion = core::mem::take(&mut self.mj_workspace);
+        motion.clear();
+        motion.resize(n, [0.0; 3 * DIM]);
+        for (i, link) in self.links.iter().enumerate() {
+            let com = vect_to_na(bodies[link.rigid_body].mprops.world_com);
+            let j = self.body_jacobians[i].as_slice();
+            for k in link.assembly_id..link.assembly_id + link.joint.ndofs() {
+                let col = &j[SPATIAL_DIM * k..SPATIAL_DIM * (k + 1)];
+                let (v, w) = (
+                    na::Vector3::new(col[0], col[1], col[2]),
+                    na::Vector3::new(col[3], col[4], col[5]),
+                );
+                // The velocity of the point at o moving with the link.
+                let v_o = v + (com - o).cross(&w);
+                motion[k] = [v_o.x, v_o.y, v_o.z, w.x, w.y, w.z, 0.0, 0.0, 0.0];
+            }
+        }
+        let rows = self.augmented_mass.nrows();
+        let out = self.augmented_mass.as_mut_slice();
+        for (i, link) in self.links.iter().enumerate() {
+            let c = &composite[i];
+            for k in link.assembly_id..link.assembly_id + link.joint.ndofs() {
+                let s = &motion[k];
+                let (v, w) = (
+                    na::Vector3::new(s[0], s[1], s[2]),
+                    na::Vector3::new(s[3], s[4], s[5]),
+                );
+                // The subtree's momentum moving with coordinate k.
+                let f_lin = v * c.mass + w.cross(&c.moment);
+                let f_ang = c.moment.cross(&v) + c.inertia * w;
+                let f = [f_lin.x, f_lin.y, f_lin.z, f_ang.x, f_ang.y, f_ang.z];
+                for &j in self.link_dofs[i].iter().take_while(|&&j| j <= k) {
+                    let sj = &motion[j];
+                    let mut m = 0.0;
+                    for r in 0..SPATIAL_DIM {
+                        m += sj[r] * f[r];
+                    }
+                    out[k * rows + j] += m;
+                    if j != k {
+                        out[j * rows + k] += m;
+                    }
+                }
+            }
+        }
+        self.mj_workspace = motion;
     }
 
     /// PATCH (scasm-testbed): the mass matrices without and with the

@@ -25,7 +25,7 @@ fn fill_unit_rows(
             .copy_within(from..from + 2 * ndofs, j_id);
         return;
     }
-    jacobians.rows_mut(j_id, ndofs * 2).fill(0.0);
+    jacobians.as_mut_slice()[j_id..j_id + ndofs * 2].fill(0.0);
     jacobians[dof_j_id] = 1.0;
     jacobians[dof_j_id + ndofs] = 1.0;
     super::multibody::lu_solve_mut(

@@ -1,0 +1,255 @@
+//! PATCH (scasm-testbed): the `L^T D L` factorisation of a multibody's mass
+//! matrix that follows its kinematic tree (Featherstone, *Rigid Body Dynamics
+//! Algorithms*, 2008, section 6.5; MuJoCo's `mj_factorM`), and the inverse
+//! it gives.
+//!
+//! The mass matrix of a tree has a non-zero `(i, j)` only where coordinate `j`
+//! is an ancestor of coordinate `i` or the other way round: a leg's
+//! coordinates couple with the floating base's and with one another, never
+//! with another leg's. A multibody numbers its coordinates parents first, so
+//! eliminating them from the last to the first (leaves first) creates no
+//! fill-in, needs no pivoting (the matrix is symmetric positive definite), and
+//! leaves `L` with the same pattern; `L^-1` has it too. The elimination skips
+//! every zero, so its work is the tree's (coordinate, ancestor) pairs, not
+//! `n^3`; it is the plain `L^T D L` elimination of any symmetric positive
+//! definite matrix, so a matrix without that pattern is factored right, only
+//! with fill-in.
+//!
+//! The inverse `A^-1 = L^-1 D^-1 L^-T` is formed once per factorisation:
+//! every constraint row of a step (a joint motor, a limit, each contact row)
+//! needs `A^-1 J^T`, and a product with the inverse costs one contiguous
+//! multiply-add per non-zero of `J` (a unit motor row: one column; a contact
+//! on a foot: the root's and that leg's columns).
+//!
+//! Rows are stored padded to a multiple of [`LANES`], and every row operation
+//! runs over whole padded rows in chunks of `LANES`, so that it vectorises;
+//! entries right of the diagonal of `L`'s rows are scratch and never read.
+
+use crate::math::Real;
+use alloc::vec::Vec;
+use na::DMatrix;
+
+/// The chunk width of the row operations.
+const LANES: usize = 8;
+
+/// `y -= f * x` over whole rows.
+#[inline]
+fn row_sub(y: &mut [Real], f: Real, x: &[Real]) {
+    for (y, x) in y.chunks_exact_mut(LANES).zip(x.chunks_exact(LANES)) {
+        for t in 0..LANES {
+            y[t] -= f * x[t];
+        }
+    }
+}
+
+/// `y += f * x` over whole rows.
+#[inline]
+fn row_add(y: &mut [Real], f: Real, x: &[Real]) {
+    for (y, x) in y.chunks_exact_mut(LANES).zip(x.chunks_exact(LANES)) {
+        for t in 0..LANES {
+            y[t] += f * x[t];
+        }
+    }
+}
+
+/// The `L^T D L` factors and the inverse of a symmetric positive definite
+/// matrix, eliminated from its last coordinate to its first.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TreeLdl {
+    n: usize,
+    /// The padded row length, a multiple of [`LANES`].
+    w: usize,
+    /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
+    /// it `D`; right of it scratch.
+    a: Vec<Real>,
+    /// Row-major, padded: `(L^-1)^T`, row `k` holding column `k` of `L^-1`.
+    l_inv_t: Vec<Real>,
+    /// Row-major, padded: the inverse (symmetric, so its rows are its columns).
+    inv: Vec<Real>,
+    /// A pivot of `D` was not positive: the matrix is not positive definite.
+    singular: bool,
+}
+
+impl TreeLdl {
+    /// The dimension of the factored matrix.
+    pub(crate) fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Factors the top-left `n x n` block of `m` and forms its inverse.
+    pub(crate) fn factor(&mut self, m: &DMatrix<Real>, n: usize) {
+        let w = n.div_ceil(LANES) * LANES;
+        (self.n, self.w) = (n, w);
+        for buffer in [&mut self.a, &mut self.l_inv_t, &mut self.inv] {
+            buffer.clear();
+            buffer.resize(n * w, 0.0);
+        }
+        let rows = m.nrows();
+        let src = m.as_slice();
+        // Row i's lower triangle is column i's upper one (m is symmetric).
+        for i in 0..n {
+            self.a[i * w..i * w + i + 1].copy_from_slice(&src[i * rows..i * rows + i + 1]);
+        }
+        self.singular = false;
+        for k in (0..n).rev() {
+            let (head, tail) = self.a.split_at_mut(k * w);
+            let row_k = &mut tail[..w];
+            let dk = row_k[k];
+            if !(dk > 0.0) {
+                self.singular = true;
+                return;
+            }
+            // Row k's entries left of i are still A's when row i is updated.
+            for i in (0..k).rev() {
+                let aki = row_k[i];
+                if aki != 0.0 {
+                    let f = aki / dk;
+                    row_sub(&mut head[i * w..(i + 1) * w], f, row_k);
+                    row_k[i] = f;
+                }
+            }
+        }
+        // L^-1 row by row: row i = e_i - sum_{j < i} L_ij (row j of L^-1).
+        let mut l_inv = core::mem::take(&mut self.inv);
+        for i in 0..n {
+            let (done, row) = l_inv.split_at_mut(i * w);
+            let row = &mut row[..w];
+            row[i] = 1.0;
+            for j in 0..i {
+                let lij = self.a[i * w + j];
+                if lij != 0.0 {
+                    row_sub(row, lij, &done[j * w..(j + 1) * w]);
+                }
+            }
+        }
+        for i in 0..n {
+            for k in 0..=i {
+                self.l_inv_t[k * w + i] = l_inv[i * w + k];
+            }
+        }
+        // A^-1 = sum_k (column k of L^-1)(column k of L^-1)^T / d_k: row c
+        // gains column k scaled by (L^-1)_ck / d_k.
+        l_inv.fill(0.0);
+        self.inv = l_inv;
+        for k in 0..n {
+            let dk_inv = 1.0 / self.a[k * w + k];
+            let col_k = &self.l_inv_t[k * w..(k + 1) * w];
+            for c in k..n {
+                let wck = col_k[c];
+                if wck != 0.0 {
+                    row_add(&mut self.inv[c * w..(c + 1) * w], wck * dk_inv, col_k);
+                }
+            }
+        }
+    }
+
+    /// Solves `A x = b` in place (as `A^-1 b`); `false`, leaving `x` as it
+    /// was, if `A` was not positive definite.
+    pub(crate) fn solve(&self, x: &mut [Real]) -> bool {
+        const MAX_DIM: usize = 64;
+        let (n, w) = (self.n, self.w);
+        debug_assert_eq!(x.len(), n);
+        if self.singular {
+            return false;
+        }
+        let mut stack = [0.0 as Real; MAX_DIM];
+        let mut heap = Vec::new();
+        let y = if w <= MAX_DIM {
+            &mut stack[..w]
+        } else {
+            heap.resize(w, 0.0);
+            &mut heap[..]
+        };
+        for (c, &xc) in x.iter().enumerate() {
+            if xc != 0.0 {
+                row_add(y, xc, &self.inv[c * w..(c + 1) * w]);
+            }
+        }
+        x.copy_from_slice(&y[..n]);
+        true
+    }
+}
+
+#[cfg(test)]
+mod test {
+    use super::TreeLdl;
+    use alloc::{vec, vec::Vec};
+    use na::{DMatrix, DVector};
+
+    /// A random symmetric positive definite matrix with a tree's pattern.
+    fn tree_matrix(parent: &[usize], seed: u32) -> DMatrix<f32> {
+        let n = parent.len();
+        let mut state = seed;
+        let mut next = || {
+            state = state.wrapping_mul(1664525).wrapping_add(1013904223);
+            (state >> 8) as f32 / (1u32 << 24) as f32 - 0.5
+        };
+        // J^T J over "links" of the tree: each coordinate's column reaches its ancestors.
+        let mut m = DMatrix::<f32>::zeros(n, n);
+        for i in 0..n {
+            let mut path = vec![i];
+            let mut p = parent[i];
+            while p != usize::MAX {
+                path.push(p);
+                p = parent[p];
+            }
+            let v: Vec<f32> = path.iter().map(|_| next()).collect();
+            for (a, &ia) in path.iter().enumerate() {
+                for (b, &ib) in path.iter().enumerate() {
+                    m[(ia, ib)] += v[a] * v[b];
+                }
+            }
+            m[(i, i)] += 0.5;
+        }
+        m
+    }
+
+    fn check_against_lu(m: &DMatrix<f32>) {
+        let n = m.nrows();
+        let mut ldl = TreeLdl::default();
+        ldl.factor(m, n);
+        let lu = m.clone().lu();
+        for k in 0..n {
+            let mut b = DVector::<f32>::zeros(n);
+            b[k] = 1.0;
+            b[0] = 0.25;
+            let want = lu.solve(&b).expect("invertible");
+            let mut got = b.clone();
+            assert!(ldl.solve(got.as_mut_slice()));
+            assert!((got - want).amax() < 1e-4, "column {k}");
+        }
+    }
+
+    #[test]
+    fn solves_as_a_dense_factorisation_on_a_tree() {
+        // A floating base (a chain of six) with three legs of three.
+        let mut parent = vec![usize::MAX, 0, 1, 2, 3, 4];
+        for _ in 0..3 {
+            let base = parent.len();
+            parent.extend([5, base, base + 1]);
+        }
+        check_against_lu(&tree_matrix(&parent, 7));
+    }
+
+    #[test]
+    fn a_matrix_without_the_pattern_is_factored_too() {
+        let n: usize = 11;
+        let mut m = tree_matrix(&(0..n).map(|i| i.wrapping_sub(1)).collect::<Vec<_>>(), 5);
+        // Couple two coordinates that are not ancestor and descendant.
+        m[(3, 9)] += 0.1;
+        m[(9, 3)] += 0.1;
+        check_against_lu(&m);
+    }
+
+    #[test]
+    fn a_matrix_that_is_not_positive_definite_is_refused() {
+        let parent = [usize::MAX, 0, 1];
+        let mut m = tree_matrix(&parent, 3);
+        m[(1, 1)] = -1.0;
+        let mut ldl = TreeLdl::default();
+        ldl.factor(&m, 3);
+        let mut b = [1.0, 0.0, 0.0];
+        assert!(!ldl.solve(&mut b));
+        assert_eq!(b, [1.0, 0.0, 0.0]);
+    }
+}
