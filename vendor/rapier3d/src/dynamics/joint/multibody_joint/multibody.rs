@@ -1,6 +1,6 @@
 use super::multibody_link::{MultibodyLink, MultibodyLinkVec};
 use super::multibody_workspace::MultibodyWorkspace;
-use super::tree_ldl::TreeLdl;
+use super::tree_ldl::{self, TreeLdl};
 use crate::alloc_prelude::*;
 use crate::dynamics::integration_parameters::SpringCoefficients;
 use crate::dynamics::solver::{GenericJointConstraint, WritebackId};
@@ -90,7 +90,13 @@ impl MassLu {
 
     /// Factors the top-left `dim x dim` block of the symmetric positive
     /// definite `m` as `L^T D L`, from the last coordinate to the first.
+    /// Beyond [`tree_ldl::MAX_DIM`] coordinates, the dense LU of
+    /// [`Self::factor`] (correct for any invertible matrix).
     fn factor_tree(&mut self, m: &DMatrix<Real>, dim: usize) {
+        if dim > tree_ldl::MAX_DIM {
+            self.factor(m, dim);
+            return;
+        }
         self.tree.get_or_insert_with(TreeLdl::default).factor(m, dim);
     }
 
@@ -168,27 +174,16 @@ pub(crate) fn lu_solve_mut<C: na::Dim, S: StorageMut<Real, Dyn, C>>(
     let n = lu.dim();
     assert_eq!(n, b.nrows(), "LU solve matrix dimension mismatch.");
     if let Some(tree) = &lu.tree {
+        // n <= tree_ldl::MAX_DIM == MAX_DIM.
+        let mut x = [0.0 as Real; MAX_DIM];
         let mut solved = true;
-        if n <= MAX_DIM {
-            let mut x = [0.0 as Real; MAX_DIM];
-            for c in 0..b.ncols() {
-                for (i, xi) in x[..n].iter_mut().enumerate() {
-                    *xi = b[(i, c)];
-                }
-                solved &= tree.solve(&mut x[..n]);
-                for (i, xi) in x[..n].iter().enumerate() {
-                    b[(i, c)] = *xi;
-                }
+        for c in 0..b.ncols() {
+            for (i, xi) in x[..n].iter_mut().enumerate() {
+                *xi = b[(i, c)];
             }
-        } else {
-            let mut x = Vec::with_capacity(n);
-            for c in 0..b.ncols() {
-                x.clear();
-                x.extend((0..n).map(|i| b[(i, c)]));
-                solved &= tree.solve(&mut x);
-                for (i, xi) in x.iter().enumerate() {
-                    b[(i, c)] = *xi;
-                }
+            solved &= tree.solve(&mut x[..n]);
+            for (i, xi) in x[..n].iter().enumerate() {
+                b[(i, c)] = *xi;
             }
         }
         return solved;
@@ -949,12 +944,13 @@ impl Multibody {
                 rb.forces.force - rb_mass * acc.linvel,
                 rb.forces.torque - gyroscopic - rb_inertia * acc.angvel,
             );
-            self.accelerations.gemv_tr(
-                1.0,
-                &self.body_jacobians[i],
-                external_forces.as_vector(),
-                1.0,
-            );
+            // PATCH (scasm-testbed): `gemv_tr` on the link's columns, as
+            // nalgebra computes each (the others are zero and add nothing).
+            let (jacobian, f) = (&self.body_jacobians[i], external_forces.as_vector());
+            for &c in &self.link_dofs[i] {
+                let val = jacobian.column(c).dot(f);
+                self.accelerations[c] = 1.0 * val + 1.0 * self.accelerations[c];
+            }
 
             if check_implicit_coriolis_divergence {
                 let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
@@ -1162,9 +1158,19 @@ impl Multibody {
             if self.body_jacobians[i].ncols() != self.ndofs {
                 // TODO: use a resize instead.
                 self.body_jacobians[i] = Jacobian::zeros(self.ndofs);
+            } else if !signature_matches {
+                // PATCH (scasm-testbed): the columns outside the link's are
+                // never written below, and must be zero.
+                self.body_jacobians[i].fill(0.0);
             }
 
             let parent_to_world;
+
+            // PATCH (scasm-testbed): the link's own columns start from zero
+            // (they were the parent's, which are zero there).
+            let own = link.assembly_id..link.assembly_id + link.joint.ndofs();
+            self.body_jacobians[i].as_mut_slice()[SPATIAL_DIM * own.start..SPATIAL_DIM * own.end]
+                .fill(0.0);
 
             if i != 0 {
                 let parent_id = link.parent_internal_id;
@@ -1172,7 +1178,11 @@ impl Multibody {
                 parent_to_world = parent_link.local_to_world;
 
                 let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
-                link_j.copy_from(parent_j);
+                // PATCH (scasm-testbed): the parent's columns only; the
+                // others are zero in both.
+                for &c in &self.link_dofs[parent_id] {
+                    link_j.column_mut(c).copy_from(&parent_j.column(c));
+                }
 
                 {
                     let mut link_j_v = link_j.fixed_rows_mut::<DIM>(0);
@@ -1189,7 +1199,7 @@ impl Multibody {
                     }
                 }
             } else {
-                self.body_jacobians[i].fill(0.0);
+                // PATCH (scasm-testbed): the root's columns are its own, zeroed above.
                 parent_to_world = Pose::IDENTITY;
             }
 
@@ -2535,8 +2545,13 @@ impl Multibody {
         };
 
         let link = &self.links[link_id];
-        let mut out_j = jacobians.rows_mut(*j_id, self.ndofs);
-        self.body_jacobians[link.internal_id].tr_mul_to(force.as_vector(), &mut out_j);
+        // PATCH (scasm-testbed): `tr_mul_to` on the link's columns, as
+        // nalgebra computes each; the others' products are zero.
+        let jacobian = &self.body_jacobians[link.internal_id];
+        jacobians.as_mut_slice()[*j_id..*j_id + self.ndofs].fill(0.0);
+        for &c in &self.link_dofs[link.internal_id] {
+            jacobians[*j_id + c] = jacobian.column(c).dot(force.as_vector());
+        }
 
         // TODO: Optimize with a copy_nonoverlapping?
         for i in 0..self.ndofs {

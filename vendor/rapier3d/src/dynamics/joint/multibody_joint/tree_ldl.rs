@@ -29,26 +29,25 @@ use crate::math::Real;
 use alloc::vec::Vec;
 use na::DMatrix;
 
-/// The chunk width of the row operations.
+/// The padding of a row: its length is a multiple of this.
 const LANES: usize = 8;
 
-/// `y -= f * x` over whole rows.
-#[inline]
-fn row_sub(y: &mut [Real], f: Real, x: &[Real]) {
-    for (y, x) in y.chunks_exact_mut(LANES).zip(x.chunks_exact(LANES)) {
-        for t in 0..LANES {
-            y[t] -= f * x[t];
-        }
+/// The largest dimension factored here; [`TreeLdl::factor`] refuses larger.
+pub(crate) const MAX_DIM: usize = 64;
+
+/// `y -= f * x`, a whole padded row (`W` known: unrolled and vectorised).
+#[inline(always)]
+fn row_sub<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W]) {
+    for t in 0..W {
+        y[t] -= f * x[t];
     }
 }
 
-/// `y += f * x` over whole rows.
-#[inline]
-fn row_add(y: &mut [Real], f: Real, x: &[Real]) {
-    for (y, x) in y.chunks_exact_mut(LANES).zip(x.chunks_exact(LANES)) {
-        for t in 0..LANES {
-            y[t] += f * x[t];
-        }
+/// `y += f * x`, a whole padded row.
+#[inline(always)]
+fn row_add<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W]) {
+    for t in 0..W {
+        y[t] += f * x[t];
     }
 }
 
@@ -57,7 +56,7 @@ fn row_add(y: &mut [Real], f: Real, x: &[Real]) {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TreeLdl {
     n: usize,
-    /// The padded row length, a multiple of [`LANES`].
+    /// The padded row length, a multiple of [`LANES`], at most [`MAX_DIM`].
     w: usize,
     /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
     /// it `D`; right of it scratch.
@@ -76,9 +75,11 @@ impl TreeLdl {
         self.n
     }
 
-    /// Factors the top-left `n x n` block of `m` and forms its inverse.
+    /// Factors the top-left `n x n` block of `m` (`n <= MAX_DIM`) and forms
+    /// its inverse.
     pub(crate) fn factor(&mut self, m: &DMatrix<Real>, n: usize) {
-        let w = n.div_ceil(LANES) * LANES;
+        assert!(n <= MAX_DIM, "TreeLdl factors at most {MAX_DIM} coordinates");
+        let w = n.div_ceil(LANES).max(1) * LANES;
         (self.n, self.w) = (n, w);
         for buffer in [&mut self.a, &mut self.l_inv_t, &mut self.inv] {
             buffer.clear();
@@ -90,10 +91,26 @@ impl TreeLdl {
         for i in 0..n {
             self.a[i * w..i * w + i + 1].copy_from_slice(&src[i * rows..i * rows + i + 1]);
         }
+        match w {
+            8 => self.eliminate::<8>(),
+            16 => self.eliminate::<16>(),
+            24 => self.eliminate::<24>(),
+            32 => self.eliminate::<32>(),
+            40 => self.eliminate::<40>(),
+            48 => self.eliminate::<48>(),
+            56 => self.eliminate::<56>(),
+            _ => self.eliminate::<64>(),
+        }
+    }
+
+    /// The factorisation and the inverse, on rows of `W` entries.
+    fn eliminate<const W: usize>(&mut self) {
+        let n = self.n;
+        let a = self.a.as_chunks_mut::<W>().0;
         self.singular = false;
         for k in (0..n).rev() {
-            let (head, tail) = self.a.split_at_mut(k * w);
-            let row_k = &mut tail[..w];
+            let (head, tail) = a.split_at_mut(k);
+            let row_k = &mut tail[0];
             let dk = row_k[k];
             if !(dk > 0.0) {
                 self.singular = true;
@@ -104,40 +121,41 @@ impl TreeLdl {
                 let aki = row_k[i];
                 if aki != 0.0 {
                     let f = aki / dk;
-                    row_sub(&mut head[i * w..(i + 1) * w], f, row_k);
+                    row_sub(&mut head[i], f, row_k);
                     row_k[i] = f;
                 }
             }
         }
         // L^-1 row by row: row i = e_i - sum_{j < i} L_ij (row j of L^-1).
-        let mut l_inv = core::mem::take(&mut self.inv);
+        let l_inv = self.inv.as_chunks_mut::<W>().0;
         for i in 0..n {
-            let (done, row) = l_inv.split_at_mut(i * w);
-            let row = &mut row[..w];
+            let (done, rest) = l_inv.split_at_mut(i);
+            let row = &mut rest[0];
             row[i] = 1.0;
             for j in 0..i {
-                let lij = self.a[i * w + j];
+                let lij = a[i][j];
                 if lij != 0.0 {
-                    row_sub(row, lij, &done[j * w..(j + 1) * w]);
+                    row_sub(row, lij, &done[j]);
                 }
             }
         }
+        let l_inv_t = self.l_inv_t.as_chunks_mut::<W>().0;
         for i in 0..n {
             for k in 0..=i {
-                self.l_inv_t[k * w + i] = l_inv[i * w + k];
+                l_inv_t[k][i] = l_inv[i][k];
             }
         }
         // A^-1 = sum_k (column k of L^-1)(column k of L^-1)^T / d_k: row c
         // gains column k scaled by (L^-1)_ck / d_k.
-        l_inv.fill(0.0);
-        self.inv = l_inv;
+        let inv = l_inv;
+        inv.iter_mut().for_each(|row| *row = [0.0; W]);
         for k in 0..n {
-            let dk_inv = 1.0 / self.a[k * w + k];
-            let col_k = &self.l_inv_t[k * w..(k + 1) * w];
+            let dk_inv = 1.0 / a[k][k];
+            let col_k = &l_inv_t[k];
             for c in k..n {
                 let wck = col_k[c];
                 if wck != 0.0 {
-                    row_add(&mut self.inv[c * w..(c + 1) * w], wck * dk_inv, col_k);
+                    row_add(&mut inv[c], wck * dk_inv, col_k);
                 }
             }
         }
@@ -146,27 +164,32 @@ impl TreeLdl {
     /// Solves `A x = b` in place (as `A^-1 b`); `false`, leaving `x` as it
     /// was, if `A` was not positive definite.
     pub(crate) fn solve(&self, x: &mut [Real]) -> bool {
-        const MAX_DIM: usize = 64;
-        let (n, w) = (self.n, self.w);
-        debug_assert_eq!(x.len(), n);
+        debug_assert_eq!(x.len(), self.n);
         if self.singular {
             return false;
         }
-        let mut stack = [0.0 as Real; MAX_DIM];
-        let mut heap = Vec::new();
-        let y = if w <= MAX_DIM {
-            &mut stack[..w]
-        } else {
-            heap.resize(w, 0.0);
-            &mut heap[..]
-        };
+        match self.w {
+            8 => self.solve_w::<8>(x),
+            16 => self.solve_w::<16>(x),
+            24 => self.solve_w::<24>(x),
+            32 => self.solve_w::<32>(x),
+            40 => self.solve_w::<40>(x),
+            48 => self.solve_w::<48>(x),
+            56 => self.solve_w::<56>(x),
+            _ => self.solve_w::<64>(x),
+        }
+        true
+    }
+
+    fn solve_w<const W: usize>(&self, x: &mut [Real]) {
+        let inv = self.inv.as_chunks::<W>().0;
+        let mut y = [0.0 as Real; W];
         for (c, &xc) in x.iter().enumerate() {
             if xc != 0.0 {
-                row_add(y, xc, &self.inv[c * w..(c + 1) * w]);
+                row_add(&mut y, xc, &inv[c]);
             }
         }
-        x.copy_from_slice(&y[..n]);
-        true
+        x.copy_from_slice(&y[..self.n]);
     }
 }
 

@@ -121,6 +121,9 @@ impl GenericContactConstraintBuilder {
         if jacobians.nrows() < required_jacobian_len {
             jacobians.resize_vertically_mut(required_jacobian_len, 0.0);
         }
+        // PATCH (scasm-testbed): this constraint's rows zeroed here, where
+        // the solver zeroed the whole buffer (its largest size ever) each step.
+        jacobians.as_mut_slice()[*jacobian_id..required_jacobian_len].fill(0.0);
 
         let chunk_j_id = *jacobian_id;
 

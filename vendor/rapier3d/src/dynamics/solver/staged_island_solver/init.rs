@@ -197,8 +197,8 @@ impl StagedIslandSolver {
             // NOTE: the twist constraint/builder buffers are NOT cleared: they are
             // the persistent constraint cache, preserved (and resized) further
             // below once the chunk layout is known.
-            // PATCH (scasm-testbed): a memset (nalgebra's fill goes entry by entry).
-            set.generic_jacobians.as_mut_slice().fill(0.0);
+            // PATCH (scasm-testbed): each generic contact constraint zeroes its
+            // own rows (`GenericContactConstraintBuilder::generate`).
             set.generic_velocity_constraints.clear();
             set.generic_velocity_constraints_builder.clear();
             set.simd_velocity_coulomb_constraints.clear();
