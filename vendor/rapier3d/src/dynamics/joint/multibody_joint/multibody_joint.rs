@@ -305,6 +305,14 @@ impl MultibodyJoint {
         num_constraints
     }
 
+    /// PATCH (scasm-testbed): whether DoF `i`'s coordinate is past one of its
+    /// limits. A limit constraint's impulse is bounded to `[0, 0]` unless it is
+    /// (`unit_joint_limit_constraint`).
+    fn limit_violated(&self, i: usize) -> bool {
+        let [min, max] = [self.data.limits[i].min, self.data.limits[i].max];
+        self.coords[i] < min || max < self.coords[i]
+    }
+
     /// Initialize and generate velocity constraints to enforce, e.g., multibody_joint limits and motors.
     pub fn velocity_constraints(
         &self,
@@ -349,7 +357,14 @@ impl MultibodyJoint {
                     );
                 }
 
-                if (limit_bits & (1 << i)) != 0 {
+                // PATCH (scasm-testbed): a limit the coordinate is within
+                // bounds its impulse to [0, 0] and would never act: its slot
+                // holds an inert constraint the solver skips.
+                if (limit_bits & (1 << i)) != 0 && !self.limit_violated(i) {
+                    constraints[num_constraints] = GenericJointConstraint::inert();
+                    num_constraints += 1;
+                    *j_id += 2 * multibody.ndofs();
+                } else if (limit_bits & (1 << i)) != 0 {
                     super::unit_multibody_joint::unit_joint_limit_constraint_reusing(
                         params,
                         multibody,

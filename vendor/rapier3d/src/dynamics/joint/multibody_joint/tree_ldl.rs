@@ -27,6 +27,7 @@
 
 use crate::math::Real;
 use alloc::vec::Vec;
+use core::ops::Range;
 use na::DMatrix;
 
 /// The padding of a row: its length is a multiple of this.
@@ -35,20 +36,33 @@ const LANES: usize = 8;
 /// The largest dimension factored here; [`TreeLdl::factor`] refuses larger.
 pub(crate) const MAX_DIM: usize = 64;
 
-/// `y -= f * x`, a whole padded row (`W` known: unrolled and vectorised).
+/// `y -= f * x` on the lanes of chunks `chunks` of a row (each chunk
+/// unrolled and vectorised).
 #[inline(always)]
-fn row_sub<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W]) {
-    for t in 0..W {
-        y[t] -= f * x[t];
+fn row_sub<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W], chunks: Range<usize>) {
+    let (y, x) = (y.as_chunks_mut::<LANES>().0, x.as_chunks::<LANES>().0);
+    for c in chunks {
+        for t in 0..LANES {
+            y[c][t] -= f * x[c][t];
+        }
     }
 }
 
-/// `y += f * x`, a whole padded row.
+/// `y += f * x` on the lanes of chunks `chunks` of a row.
 #[inline(always)]
-fn row_add<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W]) {
-    for t in 0..W {
-        y[t] += f * x[t];
+fn row_add<const W: usize>(y: &mut [Real; W], f: Real, x: &[Real; W], chunks: Range<usize>) {
+    let (y, x) = (y.as_chunks_mut::<LANES>().0, x.as_chunks::<LANES>().0);
+    for c in chunks {
+        for t in 0..LANES {
+            y[c][t] += f * x[c][t];
+        }
     }
+}
+
+/// The chunks holding entries `0..=last`.
+#[inline(always)]
+fn through(last: usize) -> Range<usize> {
+    0..last / LANES + 1
 }
 
 /// The `L^T D L` factors and the inverse of a symmetric positive definite
@@ -116,12 +130,13 @@ impl TreeLdl {
                 self.singular = true;
                 return;
             }
-            // Row k's entries left of i are still A's when row i is updated.
+            // Row k's entries left of i are still A's when row i is updated;
+            // row i's entries right of i are scratch.
             for i in (0..k).rev() {
                 let aki = row_k[i];
                 if aki != 0.0 {
                     let f = aki / dk;
-                    row_sub(&mut head[i], f, row_k);
+                    row_sub(&mut head[i], f, row_k, through(i));
                     row_k[i] = f;
                 }
             }
@@ -135,7 +150,8 @@ impl TreeLdl {
             for j in 0..i {
                 let lij = a[i][j];
                 if lij != 0.0 {
-                    row_sub(row, lij, &done[j]);
+                    // Row j of L^-1 is zero right of j.
+                    row_sub(row, lij, &done[j], through(j));
                 }
             }
         }
@@ -152,10 +168,12 @@ impl TreeLdl {
         for k in 0..n {
             let dk_inv = 1.0 / a[k][k];
             let col_k = &l_inv_t[k];
+            // Column k of L^-1 is zero above k.
+            let chunks = k / LANES..W / LANES;
             for c in k..n {
                 let wck = col_k[c];
                 if wck != 0.0 {
-                    row_add(&mut inv[c], wck * dk_inv, col_k);
+                    row_add(&mut inv[c], wck * dk_inv, col_k, chunks.clone());
                 }
             }
         }
@@ -186,7 +204,7 @@ impl TreeLdl {
         let mut y = [0.0 as Real; W];
         for (c, &xc) in x.iter().enumerate() {
             if xc != 0.0 {
-                row_add(&mut y, xc, &inv[c]);
+                row_add(&mut y, xc, &inv[c], 0..W / LANES);
             }
         }
         x.copy_from_slice(&y[..self.n]);

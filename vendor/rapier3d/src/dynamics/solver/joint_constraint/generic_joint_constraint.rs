@@ -61,6 +61,25 @@ impl GenericJointConstraint {
         }
     }
 
+    /// PATCH (scasm-testbed): a constraint that never acts: its impulse is
+    /// bounded to `[0, 0]`, which [`Self::solve`] skips, on no degree of
+    /// freedom.
+    pub fn inert() -> Self {
+        Self {
+            ndofs1: 0,
+            j_id1: 0,
+            ndofs2: 0,
+            j_id2: 0,
+            impulse_bounds: [0.0, 0.0],
+            inv_lhs: 0.0,
+            rhs: 0.0,
+            rhs_wo_bias: 0.0,
+            cfm_coeff: 0.0,
+            cfm_gain: 0.0,
+            ..Self::invalid()
+        }
+    }
+
     pub fn lock_axes(
         params: &IntegrationParameters,
         joint_id: JointIndex,
@@ -277,6 +296,11 @@ impl GenericJointConstraint {
         solver_vels: &mut SolverBodies,
         generic_solver_vels: &mut DVector,
     ) {
+        // PATCH (scasm-testbed): an impulse bounded to [0, 0] never acts (an
+        // inert constraint, a limit the joint is within).
+        if self.impulse_bounds[0] == 0.0 && self.impulse_bounds[1] == 0.0 {
+            return;
+        }
         let jacobians = jacobians.as_slice();
 
         let solver_vel1 = self.solver_vel1(solver_vels, generic_solver_vels);
