@@ -162,19 +162,23 @@ impl TreeLdl {
             }
         }
         // A^-1 = sum_k (column k of L^-1)(column k of L^-1)^T / d_k: row c
-        // gains column k scaled by (L^-1)_ck / d_k.
+        // gains column k scaled by (L^-1)_ck / d_k, in its lower triangle
+        // (column k of L^-1 is zero above k), which is then mirrored.
         let inv = l_inv;
         inv.iter_mut().for_each(|row| *row = [0.0; W]);
         for k in 0..n {
             let dk_inv = 1.0 / a[k][k];
             let col_k = &l_inv_t[k];
-            // Column k of L^-1 is zero above k.
-            let chunks = k / LANES..W / LANES;
             for c in k..n {
                 let wck = col_k[c];
                 if wck != 0.0 {
-                    row_add(&mut inv[c], wck * dk_inv, col_k, chunks.clone());
+                    row_add(&mut inv[c], wck * dk_inv, col_k, k / LANES..c / LANES + 1);
                 }
+            }
+        }
+        for c in 0..n {
+            for r in 0..c {
+                inv[r][c] = inv[c][r];
             }
         }
     }
