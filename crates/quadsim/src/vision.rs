@@ -147,19 +147,35 @@ pub fn find_band(
     let rays = intrinsics.pixel_rays();
     let outside_own = |_, c: &Collider| c.parent().is_none_or(|p| !own_bodies.contains(&p));
     let filter = QueryFilter::default().predicate(&outside_own);
+    // The distance along the ray through pixel `(col, row)` to the band, if it
+    // meets it, and the ray's direction.
+    let band_along = |col: u32, row: u32| {
+        let [x, y, z] = rays.ray(col, row).map(|v| v as Real);
+        let d = (camera_pose.rotation * Vector::new(x, y, z)).normalize();
+        let dir = [d.x, d.y, d.z].map(f64::from);
+        beacon.ray_hits_band(origin, dir).map(|t| (t, d))
+    };
     let mut pixels = Vec::new();
-    for row in r0..=r1 {
-        for col in c0..=c1 {
-            let [x, y, z] = rays.ray(col, row).map(|v| v as Real);
-            let d = (camera_pose.rotation * Vector::new(x, y, z)).normalize();
-            let dir = [d.x, d.y, d.z].map(f64::from);
-            let Some(band_t) = beacon.ray_hits_band(origin, dir) else {
+    if !may_occlude {
+        // Nothing can hide the band, so its pixels are those whose rays meet
+        // it. The rays through one image row lie in one plane, which cuts the
+        // band (a convex solid) in a convex section, so a row's pixels form
+        // one run: found from its two ends, its inside taken whole.
+        for row in r0..=r1 {
+            let Some(first) = (c0..=c1).find(|&col| band_along(col, row).is_some()) else {
                 continue;
             };
-            if !may_occlude {
-                pixels.push((col, row));
+            let last = (first..=c1)
+                .rev()
+                .find(|&col| col == first || band_along(col, row).is_some())
+                .unwrap_or(first);
+            pixels.extend((first..=last).map(|col| (col, row)));
+        }
+    } else {
+        for (row, col) in (r0..=r1).flat_map(|row| (c0..=c1).map(move |col| (row, col))) {
+            let Some((band_t, d)) = band_along(col, row) else {
                 continue;
-            }
+            };
             // Only something other than the beacon itself (its pole's top face
             // coincides with the band's bottom face) can hide the band.
             let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
@@ -206,6 +222,7 @@ fn anything_between(
     beacon_body: Option<RigidBodyHandle>,
     own_bodies: &[RigidBodyHandle],
 ) -> bool {
+    use rapier3d::parry::bounding_volume::{Aabb, BoundingVolume};
     use rapier3d::parry::query::intersection_test;
     use rapier3d::parry::shape::ConvexPolyhedron;
     let r = beacon.radius_m;
@@ -219,21 +236,29 @@ fn anything_between(
             ));
         }
     }
-    let Some(hull) = ConvexPolyhedron::from_convex_hull(&points) else {
-        return true;
-    };
-    let identity = Pose::IDENTITY;
-    world
+    // Only a collider whose bounding box meets the points' can meet their
+    // hull; most frames have none, and skip building the hull.
+    let reach = Aabb::from_points(points.iter().copied());
+    let mut near = world
         .colliders
         .iter()
         .filter(|(_, c)| {
             c.parent()
                 .is_none_or(|p| Some(p) != beacon_body && !own_bodies.contains(&p))
         })
-        .any(|(_, c)| {
-            intersection_test(&identity, &hull, c.position(), c.shape())
-                .map_or(true, |i| i.intersecting)
-        })
+        .filter(|(_, c)| c.compute_aabb().intersects(&reach))
+        .peekable();
+    if near.peek().is_none() {
+        return false;
+    }
+    let Some(hull) = ConvexPolyhedron::from_convex_hull(&points) else {
+        return true;
+    };
+    let identity = Pose::IDENTITY;
+    near.any(|(_, c)| {
+        intersection_test(&identity, &hull, c.position(), c.shape())
+            .map_or(true, |i| i.intersecting)
+    })
 }
 
 /// The camera: finds the band and turns it into a noisy reading and a bearing.

@@ -163,6 +163,64 @@ fn no_reading_out_of_view_behind_cut_or_occluded() {
     assert!(look(0.0, 0.6, -0.3).is_ok());
 }
 
+/// With nothing in the way the camera finds the band's rows by their two ends
+/// (a row's pixels are one run): the blob must be exactly the pixels whose rays
+/// meet the band, found ray by ray over the whole image, from every side,
+/// height, distance and tilt.
+#[test]
+fn an_unoccluded_blob_is_every_pixel_whose_ray_meets_the_band() {
+    use rand::{RngExt, SeedableRng};
+    use rapier3d::math::Rotation;
+    let intr = CameraIntrinsics::default();
+    let beacon = BeaconConfig::default();
+    let mut world = PhysicsWorld::new();
+    let band = beacon.insert(&mut world);
+    world.step();
+    let rays = intr.pixel_rays();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    let (mut seen, mut compared) = (0, 0);
+    for _ in 0..400 {
+        let range: f64 = rng.random_range(0.3..4.0);
+        let around: f64 = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
+        let x = beacon.xy_m[0] + range * around.cos();
+        let y = beacon.xy_m[1] + range * around.sin();
+        let z: f64 = rng.random_range(0.0..0.5);
+        // Face the beacon, off by up to a third of a radian each way.
+        let yaw = (beacon.xy_m[1] - y).atan2(beacon.xy_m[0] - x) + rng.random_range(-0.35..0.35);
+        let (pitch, roll): (f64, f64) = (rng.random_range(-0.4..0.4), rng.random_range(-0.5..0.5));
+        let pose = Pose::from_parts(
+            Vector::new(x as f32, y as f32, z as f32),
+            Rotation::from_rotation_z(yaw as f32)
+                * Rotation::from_rotation_y(pitch as f32)
+                * Rotation::from_rotation_x(roll as f32),
+        );
+        let o = pose.translation;
+        let origin = [o.x, o.y, o.z].map(f64::from);
+        let mut every = Vec::new();
+        for row in 0..intr.height_px {
+            for col in 0..intr.width_px {
+                let [a, b, c] = rays.ray(col, row).map(|v| v as f32);
+                let d = (pose.rotation * Vector::new(a, b, c)).normalize();
+                if beacon
+                    .ray_hits_band(origin, [d.x, d.y, d.z].map(f64::from))
+                    .is_some()
+                {
+                    every.push((col, row));
+                }
+            }
+        }
+        if let Ok(blob) = vision::find_band(&world, &pose, &intr, &beacon, band, &[]) {
+            assert_eq!(blob.pixels, every, "camera at {pose:?}");
+            seen += 1;
+        }
+        compared += 1;
+    }
+    assert!(
+        seen > 100,
+        "the band was seen in {seen} of {compared} poses"
+    );
+}
+
 #[test]
 fn standing_noise_is_about_the_configured_spread() {
     let config = SimConfig {
