@@ -680,6 +680,18 @@ impl Multibody {
         self.self_contacts_enabled = enabled;
     }
 
+    /// PATCH (scasm-testbed): the tree's factors and inverse of the augmented
+    /// mass matrix, when they are the ones in use
+    /// ([`MultibodyDynamics::Tree`]), the matrix was positive definite and
+    /// every coordinate is kept (none kinematic), so that they solve in the
+    /// multibody's own coordinates.
+    pub(crate) fn tree_factors(&self) -> Option<&TreeLdl> {
+        if self.augmented_mass_indices.first_to_remove != IndexSequence::NONE {
+            return None;
+        }
+        self.inv_augmented_mass.tree.as_ref().filter(|t| t.is_positive_definite())
+    }
+
     /// The inverse augmented mass matrix of this multibody.
     pub fn inv_augmented_mass(&self) -> &MassLu {
         &self.inv_augmented_mass
@@ -874,7 +886,7 @@ impl Multibody {
             return; // Nothing to do.
         }
 
-        self.accelerations.fill(0.0);
+        self.accelerations.as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
 
         // If there is significant movement, the semi-implicit coriolis term
         // occasionally cause instabilities due to the matrix being near singular.
@@ -1242,8 +1254,8 @@ impl Multibody {
             self.augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
             self.acc_augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
         } else {
-            self.augmented_mass.fill(0.0);
-            self.acc_augmented_mass.fill(0.0);
+            self.augmented_mass.as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
+            self.acc_augmented_mass.as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
         }
 
         self.augmented_mass_indices.clear();
@@ -1371,8 +1383,8 @@ impl Multibody {
                     }
                 }
             } else {
-                self.coriolis_v[i].fill(0.0);
-                self.coriolis_w[i].fill(0.0);
+                self.coriolis_v[i].as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
+                self.coriolis_w[i].as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
             }
 
             let coriolis_v = &mut self.coriolis_v[i];
@@ -1505,7 +1517,7 @@ impl Multibody {
         if self.augmented_mass.ncols() != self.ndofs {
             self.augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
         } else {
-            self.augmented_mass.fill(0.0);
+            self.augmented_mass.as_mut_slice().fill(0.0); // PATCH (scasm-testbed): a memset.
         }
         self.augmented_mass_indices.clear();
         for link in self.links.iter() {
@@ -2549,8 +2561,27 @@ impl Multibody {
         // nalgebra computes each; the others' products are zero.
         let jacobian = &self.body_jacobians[link.internal_id];
         jacobians.as_mut_slice()[*j_id..*j_id + self.ndofs].fill(0.0);
-        for &c in &self.link_dofs[link.internal_id] {
+        let dofs = &self.link_dofs[link.internal_id];
+        for &c in dofs {
             jacobians[*j_id + c] = jacobian.column(c).dot(force.as_vector());
+        }
+
+        // PATCH (scasm-testbed): with the tree's factors, `M^-1 J` is solved
+        // in place, and both dot products run over the link's columns only
+        // (`J` is zero elsewhere).
+        if let Some(tree) = self.tree_factors() {
+            let n = self.ndofs;
+            let (j, invm_j) = jacobians.as_mut_slice()[*j_id..*j_id + 2 * n].split_at_mut(n);
+            invm_j.copy_from_slice(j);
+            tree.solve(invm_j);
+            let v = self.velocities.as_slice();
+            let (mut j_invm_j, mut j_v) = (0.0, 0.0);
+            for &c in dofs {
+                j_invm_j += j[c] * invm_j[c];
+                j_v += j[c] * v[c];
+            }
+            *j_id += 2 * n;
+            return (j_invm_j, j_v);
         }
 
         // TODO: Optimize with a copy_nonoverlapping?

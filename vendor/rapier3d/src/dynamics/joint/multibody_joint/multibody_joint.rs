@@ -423,6 +423,14 @@ impl MultibodyJoint {
                 let mut solved = None;
                 let limits = if (limit_bits & (1 << i)) != 0 {
                     let limits = [self.data.limits[i].min, self.data.limits[i].max];
+                    // PATCH (scasm-testbed): as for a linear DoF above, a
+                    // limit the coordinate is within holds an inert slot (the
+                    // motor below then solves for this DoF's rows itself).
+                    if !self.limit_violated(i) {
+                        constraints[num_constraints] = GenericJointConstraint::inert();
+                        num_constraints += 1;
+                        *j_id += 2 * multibody.ndofs();
+                    } else {
                     super::unit_multibody_joint::unit_joint_limit_constraint_reusing(
                         params,
                         multibody,
@@ -437,6 +445,7 @@ impl MultibodyJoint {
                         self.data.softness,
                         &mut solved,
                     );
+                    }
                     Some(limits)
                 } else {
                     None

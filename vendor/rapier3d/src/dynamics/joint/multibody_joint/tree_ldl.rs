@@ -75,7 +75,8 @@ pub(crate) struct TreeLdl {
     /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
     /// it `D`; right of it scratch.
     a: Vec<Real>,
-    /// Row-major, padded: `(L^-1)^T`, row `k` holding column `k` of `L^-1`.
+    /// Row-major, padded: `(L^-1)^T = (L^T)^-1`, row `k` holding column `k`
+    /// of `L^-1`.
     l_inv_t: Vec<Real>,
     /// Row-major, padded: the inverse (symmetric, so its rows are its columns).
     inv: Vec<Real>,
@@ -141,31 +142,24 @@ impl TreeLdl {
                 }
             }
         }
-        // L^-1 row by row: row i = e_i - sum_{j < i} L_ij (row j of L^-1).
-        let l_inv = self.inv.as_chunks_mut::<W>().0;
-        for i in 0..n {
-            let (done, rest) = l_inv.split_at_mut(i);
-            let row = &mut rest[0];
-            row[i] = 1.0;
-            for j in 0..i {
-                let lij = a[i][j];
-                if lij != 0.0 {
-                    // Row j of L^-1 is zero right of j.
-                    row_sub(row, lij, &done[j], through(j));
-                }
-            }
-        }
+        // The columns of L^-1, as the rows of (L^T)^-1, from the last up:
+        // row k = e_k - sum_{j > k} L_jk (row j), and row j is zero left of j.
         let l_inv_t = self.l_inv_t.as_chunks_mut::<W>().0;
-        for i in 0..n {
-            for k in 0..=i {
-                l_inv_t[k][i] = l_inv[i][k];
+        for k in (0..n).rev() {
+            let (head, tail) = l_inv_t.split_at_mut(k + 1);
+            let row = &mut head[k];
+            row[k] = 1.0;
+            for (j, row_j) in (k + 1..n).zip(tail.iter()) {
+                let ljk = a[j][k];
+                if ljk != 0.0 {
+                    row_sub(row, ljk, row_j, j / LANES..W / LANES);
+                }
             }
         }
         // A^-1 = sum_k (column k of L^-1)(column k of L^-1)^T / d_k: row c
         // gains column k scaled by (L^-1)_ck / d_k, in its lower triangle
         // (column k of L^-1 is zero above k), which is then mirrored.
-        let inv = l_inv;
-        inv.iter_mut().for_each(|row| *row = [0.0; W]);
+        let inv = self.inv.as_chunks_mut::<W>().0;
         for k in 0..n {
             let dk_inv = 1.0 / a[k][k];
             let col_k = &l_inv_t[k];
@@ -181,6 +175,17 @@ impl TreeLdl {
                 inv[r][c] = inv[c][r];
             }
         }
+    }
+
+    /// Whether the factored matrix was positive definite (else nothing solves).
+    pub(crate) fn is_positive_definite(&self) -> bool {
+        !self.singular
+    }
+
+    /// Row (and column) `i` of the inverse, `A^-1 e_i`; meaningless unless
+    /// [`Self::is_positive_definite`].
+    pub(crate) fn inverse_row(&self, i: usize) -> &[Real] {
+        &self.inv[i * self.w..i * self.w + self.n]
     }
 
     /// Solves `A x = b` in place (as `A^-1 b`); `false`, leaving `x` as it

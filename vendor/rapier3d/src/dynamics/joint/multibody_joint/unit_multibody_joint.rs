@@ -27,12 +27,18 @@ fn fill_unit_rows(
     }
     jacobians.as_mut_slice()[j_id..j_id + ndofs * 2].fill(0.0);
     jacobians[dof_j_id] = 1.0;
+    *solved = Some(j_id);
+    // With the tree's inverse (and every coordinate kept), `M^-1 e` is its row.
+    if let Some(tree) = multibody.tree_factors() {
+        jacobians.as_mut_slice()[j_id + ndofs..j_id + 2 * ndofs]
+            .copy_from_slice(tree.inverse_row(dof_j_id - j_id));
+        return;
+    }
     jacobians[dof_j_id + ndofs] = 1.0;
     super::multibody::lu_solve_mut(
         multibody.inv_augmented_mass(),
         &mut jacobians.rows_mut(j_id + ndofs, ndofs),
     );
-    *solved = Some(j_id);
 }
 
 /// Initializes and generate the velocity constraints applicable to the multibody links attached
