@@ -73,6 +73,15 @@ fn compare_tree(sim: &QuadrupedSim, what: &str) {
     tree.set_dynamics(rapier3d::dynamics::MultibodyDynamics::Tree);
     tree.assemble_mass_matrices(dt, bodies, false);
     dense.assemble_mass_matrices(dt, bodies, true);
+    // The body jacobians, by one shift per column where upstream's take two.
+    for link in 0..mb.num_links() {
+        let (jt, jd) = (tree.body_jacobian(link), dense.body_jacobian(link));
+        let err = (jt - jd).amax();
+        assert!(
+            err <= 1e-6 * jd.amax().max(1.0),
+            "{what}: body jacobian of link {link}: {err} off"
+        );
+    }
     let (t, d) = (tree.mass_matrices().0, dense.mass_matrices().0);
     // Each entry against its row's and column's scale, sqrt(M_ii M_jj) (the
     // leg's entries are 1e-6 of the torso's): f32 resolves 1.2e-7 of it, and

@@ -1163,6 +1163,10 @@ impl Multibody {
             dofs.dedup();
             self.link_dofs[i] = dofs;
         }
+        if self.dynamics == MultibodyDynamics::Tree {
+            self.update_body_jacobians_tree(signature_matches);
+            return;
+        }
 
         for i in 0..self.links.len() {
             let link = &self.links[i];
@@ -1555,6 +1559,64 @@ impl Multibody {
             .rearrange_rows(&mut self.augmented_mass, true);
         self.inv_augmented_mass
             .factor_tree(&self.augmented_mass, effective_dim);
+    }
+
+    /// PATCH (scasm-testbed): [`Self::update_body_jacobians`] for
+    /// [`MultibodyDynamics::Tree`], on the jacobians' raw column-major storage:
+    /// a link's column `c` (velocity `v`, angular velocity `w` of its centre of
+    /// mass) is its parent's moved by the parent-to-link shift,
+    /// `v + w x (shift02 + shift23)`, and its own joint's columns are the
+    /// joint's motion moved by `shift23`. The same jacobians as the default's
+    /// two steps (`gemv` by each shift's cross matrix), to f32 rounding.
+    fn update_body_jacobians_tree(&mut self, signature_matches: bool) {
+        const S: usize = SPATIAL_DIM;
+        let cross = |w: [Real; 3], s: [Real; 3]| {
+            [
+                w[1] * s[2] - w[2] * s[1],
+                w[2] * s[0] - w[0] * s[2],
+                w[0] * s[1] - w[1] * s[0],
+            ]
+        };
+        for i in 0..self.links.len() {
+            if self.body_jacobians[i].ncols() != self.ndofs {
+                self.body_jacobians[i] = Jacobian::zeros(self.ndofs);
+            } else if !signature_matches {
+                self.body_jacobians[i].as_mut_slice().fill(0.0);
+            }
+            let link = &self.links[i];
+            let own = link.assembly_id..link.assembly_id + link.joint.ndofs();
+            let s23 = [link.shift23.x, link.shift23.y, link.shift23.z];
+            let parent_to_world = if i != 0 {
+                let parent_id = link.parent_internal_id;
+                let shift = link.shift02 + link.shift23;
+                let s = [shift.x, shift.y, shift.z];
+                let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
+                let (out, from) = (link_j.as_mut_slice(), parent_j.as_slice());
+                for &c in &self.link_dofs[parent_id] {
+                    let p = &from[S * c..S * c + S];
+                    let w = [p[3], p[4], p[5]];
+                    let dv = cross(w, s);
+                    out[S * c..S * c + S]
+                        .copy_from_slice(&[p[0] + dv[0], p[1] + dv[1], p[2] + dv[2], w[0], w[1], w[2]]);
+                }
+                self.links[parent_id].local_to_world
+            } else {
+                Pose::IDENTITY
+            };
+            let mut tmp = SMatrix::<Real, SPATIAL_DIM, SPATIAL_DIM>::zeros();
+            link.joint.jacobian(
+                &(parent_to_world.rotation * link.joint.data.local_frame1.rotation),
+                &mut tmp.columns_mut(0, own.len()),
+            );
+            let out = self.body_jacobians[i].as_mut_slice();
+            for (k, c) in own.enumerate() {
+                let j = &tmp.as_slice()[S * k..S * k + S];
+                let w = [j[3], j[4], j[5]];
+                let dv = cross(w, s23);
+                out[S * c..S * c + S]
+                    .copy_from_slice(&[j[0] + dv[0], j[1] + dv[1], j[2] + dv[2], w[0], w[1], w[2]]);
+            }
+        }
     }
 
     /// PATCH (scasm-testbed): adds the joint-space mass matrix `sum J^T M J`

@@ -21,8 +21,9 @@
 //! multiply-add per non-zero of `J` (a unit motor row: one column; a contact
 //! on a foot: the root's and that leg's columns).
 //!
-//! Rows are stored padded to a multiple of [`LANES`], and every row operation
-//! runs over whole padded rows in chunks of `LANES`, so that it vectorises;
+//! Rows are stored padded to a multiple of 8 entries, and every row operation
+//! runs over the chunks of `LANES` entries (one SSE register) that can be
+//! non-zero, so that it vectorises;
 //! entries right of the diagonal of `L`'s rows are scratch and never read.
 
 use crate::math::Real;
@@ -30,8 +31,8 @@ use alloc::vec::Vec;
 use core::ops::Range;
 use na::DMatrix;
 
-/// The padding of a row: its length is a multiple of this.
-const LANES: usize = 8;
+/// The entries a row operation handles at a time (one SSE register).
+const LANES: usize = 4;
 
 /// The largest dimension factored here; [`TreeLdl::factor`] refuses larger.
 pub(crate) const MAX_DIM: usize = 64;
@@ -70,7 +71,7 @@ fn through(last: usize) -> Range<usize> {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TreeLdl {
     n: usize,
-    /// The padded row length, a multiple of [`LANES`], at most [`MAX_DIM`].
+    /// The padded row length, a multiple of 8, at most [`MAX_DIM`].
     w: usize,
     /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
     /// it `D`; right of it scratch.
@@ -94,7 +95,7 @@ impl TreeLdl {
     /// its inverse.
     pub(crate) fn factor(&mut self, m: &DMatrix<Real>, n: usize) {
         assert!(n <= MAX_DIM, "TreeLdl factors at most {MAX_DIM} coordinates");
-        let w = n.div_ceil(LANES).max(1) * LANES;
+        let w = n.div_ceil(8).max(1) * 8;
         (self.n, self.w) = (n, w);
         for buffer in [&mut self.a, &mut self.l_inv_t, &mut self.inv] {
             buffer.clear();
