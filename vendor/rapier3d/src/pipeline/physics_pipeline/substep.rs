@@ -436,11 +436,15 @@ impl PhysicsPipeline {
         // TODO: do this only on user-change.
         // TODO: do we want some kind of automatic inverse kinematics?
         for multibody in &mut multibody_joints.multibodies {
-            // PATCH (scasm-testbed): skipped when nothing moved since the last step.
-            multibody.1.forward_kinematics_at_step_start(bodies);
-            multibody
-                .1
-                .update_rigid_bodies_internal(bodies, true, false, false);
+            // PATCH (scasm-testbed): skipped when nothing moved since the last
+            // step, and so is writing back poses and mass properties the
+            // rigid bodies already have (the last step ended by computing them).
+            let moved = multibody.1.forward_kinematics_at_step_start(bodies);
+            if moved || !multibody.1.rigid_bodies_in_place(bodies) {
+                multibody
+                    .1
+                    .update_rigid_bodies_internal(bodies, true, false, false);
+            }
         }
 
         // The soft meshes' vertex caches, read by the soft contact passes.

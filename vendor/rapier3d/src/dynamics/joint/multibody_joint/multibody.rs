@@ -2439,7 +2439,8 @@ impl Multibody {
     /// forward kinematics on the integrated coordinates, and since then no link
     /// was borrowed mutably or displaced, no link's rigid body was modified by
     /// the user, and the root's rigid body is where the multibody left it.
-    pub(crate) fn forward_kinematics_at_step_start(&mut self, bodies: &RigidBodySet) {
+    /// Returns whether they ran.
+    pub(crate) fn forward_kinematics_at_step_start(&mut self, bodies: &RigidBodySet) -> bool {
         let untouched = self.fk_fresh
             && self.links.iter().all(|link| {
                 bodies
@@ -2453,6 +2454,19 @@ impl Multibody {
         if !untouched {
             self.forward_kinematics(bodies, true);
         }
+        !untouched
+    }
+
+    /// PATCH (scasm-testbed): whether every link's rigid body is at the
+    /// link's pose, as both its position and its next position: then
+    /// [`Self::update_rigid_bodies_internal`] would write the same poses, and
+    /// the mass properties the end of the last step computed at them.
+    pub(crate) fn rigid_bodies_in_place(&self, bodies: &RigidBodySet) -> bool {
+        self.links.iter().all(|link| {
+            bodies.get(link.rigid_body).is_some_and(|rb| {
+                rb.pos.position == link.local_to_world && rb.pos.next_position == link.local_to_world
+            })
+        })
     }
 
     /// Computes the ids of all the links between the root and the link identified by `link_id`.
