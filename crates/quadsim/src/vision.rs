@@ -165,28 +165,30 @@ pub fn find_band(
             let Some(first) = (c0..=c1).find(|&col| band_along(col, row).is_some()) else {
                 continue;
             };
-            let last = (first..=c1)
+            let last = (first + 1..=c1)
                 .rev()
-                .find(|&col| col == first || band_along(col, row).is_some())
+                .find(|&col| band_along(col, row).is_some())
                 .unwrap_or(first);
             pixels.extend((first..=last).map(|col| (col, row)));
         }
     } else {
-        for (row, col) in (r0..=r1).flat_map(|row| (c0..=c1).map(move |col| (row, col))) {
-            let Some((band_t, d)) = band_along(col, row) else {
-                continue;
-            };
-            // Only something other than the beacon itself (its pole's top face
-            // coincides with the band's bottom face) can hide the band.
-            let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
-            match first {
-                Some((hit, t))
-                    if world.colliders[hit].parent() != beacon_body
-                        && f64::from(t) < band_t - 1e-4 =>
-                {
-                    return Err(NoReading::Occluded);
+        for row in r0..=r1 {
+            for col in c0..=c1 {
+                let Some((band_t, d)) = band_along(col, row) else {
+                    continue;
+                };
+                // Only something other than the beacon itself (its pole's top
+                // face coincides with the band's bottom face) can hide the band.
+                let first = world.cast_ray(&Ray::new(o, d), max_toi, true, filter);
+                match first {
+                    Some((hit, t))
+                        if world.colliders[hit].parent() != beacon_body
+                            && f64::from(t) < band_t - 1e-4 =>
+                    {
+                        return Err(NoReading::Occluded);
+                    }
+                    _ => pixels.push((col, row)),
                 }
-                _ => pixels.push((col, row)),
             }
         }
     }

@@ -689,7 +689,10 @@ impl Multibody {
         if self.augmented_mass_indices.first_to_remove != IndexSequence::NONE {
             return None;
         }
-        self.inv_augmented_mass.tree.as_ref().filter(|t| t.is_positive_definite())
+        self.inv_augmented_mass
+            .tree
+            .as_ref()
+            .filter(|t| t.is_positive_definite())
     }
 
     /// The inverse augmented mass matrix of this multibody.
@@ -1570,12 +1573,11 @@ impl Multibody {
     /// two steps (`gemv` by each shift's cross matrix), to f32 rounding.
     fn update_body_jacobians_tree(&mut self, signature_matches: bool) {
         const S: usize = SPATIAL_DIM;
-        let cross = |w: [Real; 3], s: [Real; 3]| {
-            [
-                w[1] * s[2] - w[2] * s[1],
-                w[2] * s[0] - w[0] * s[2],
-                w[0] * s[1] - w[1] * s[0],
-            ]
+        // A column (v, w) moved by `shift`: (v + w x shift, w).
+        let shifted = |col: &[Real], shift: Vector| {
+            let w = Vector::new(col[3], col[4], col[5]);
+            let v = Vector::new(col[0], col[1], col[2]) + w.cross(shift);
+            [v.x, v.y, v.z, w.x, w.y, w.z]
         };
         for i in 0..self.links.len() {
             if self.body_jacobians[i].ncols() != self.ndofs {
@@ -1585,19 +1587,13 @@ impl Multibody {
             }
             let link = &self.links[i];
             let own = link.assembly_id..link.assembly_id + link.joint.ndofs();
-            let s23 = [link.shift23.x, link.shift23.y, link.shift23.z];
             let parent_to_world = if i != 0 {
                 let parent_id = link.parent_internal_id;
                 let shift = link.shift02 + link.shift23;
-                let s = [shift.x, shift.y, shift.z];
                 let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
                 let (out, from) = (link_j.as_mut_slice(), parent_j.as_slice());
                 for &c in &self.link_dofs[parent_id] {
-                    let p = &from[S * c..S * c + S];
-                    let w = [p[3], p[4], p[5]];
-                    let dv = cross(w, s);
-                    out[S * c..S * c + S]
-                        .copy_from_slice(&[p[0] + dv[0], p[1] + dv[1], p[2] + dv[2], w[0], w[1], w[2]]);
+                    out[S * c..S * c + S].copy_from_slice(&shifted(&from[S * c..S * c + S], shift));
                 }
                 self.links[parent_id].local_to_world
             } else {
@@ -1610,11 +1606,8 @@ impl Multibody {
             );
             let out = self.body_jacobians[i].as_mut_slice();
             for (k, c) in own.enumerate() {
-                let j = &tmp.as_slice()[S * k..S * k + S];
-                let w = [j[3], j[4], j[5]];
-                let dv = cross(w, s23);
-                out[S * c..S * c + S]
-                    .copy_from_slice(&[j[0] + dv[0], j[1] + dv[1], j[2] + dv[2], w[0], w[1], w[2]]);
+                let joint_col = &tmp.as_slice()[S * k..S * k + S];
+                out[S * c..S * c + S].copy_from_slice(&shifted(joint_col, link.shift23));
             }
         }
     }
@@ -2464,7 +2457,8 @@ impl Multibody {
     pub(crate) fn rigid_bodies_in_place(&self, bodies: &RigidBodySet) -> bool {
         self.links.iter().all(|link| {
             bodies.get(link.rigid_body).is_some_and(|rb| {
-                rb.pos.position == link.local_to_world && rb.pos.next_position == link.local_to_world
+                rb.pos.position == link.local_to_world
+                    && rb.pos.next_position == link.local_to_world
             })
         })
     }

@@ -361,9 +361,7 @@ impl MultibodyJoint {
                 // bounds its impulse to [0, 0] and would never act: its slot
                 // holds an inert constraint the solver skips.
                 if (limit_bits & (1 << i)) != 0 && !self.limit_violated(i) {
-                    constraints[num_constraints] = GenericJointConstraint::inert();
-                    num_constraints += 1;
-                    *j_id += 2 * multibody.ndofs();
+                    inert_slot(multibody, j_id, constraints, &mut num_constraints);
                 } else if (limit_bits & (1 << i)) != 0 {
                     super::unit_multibody_joint::unit_joint_limit_constraint_reusing(
                         params,
@@ -427,24 +425,22 @@ impl MultibodyJoint {
                     // limit the coordinate is within holds an inert slot (the
                     // motor below then solves for this DoF's rows itself).
                     if !self.limit_violated(i) {
-                        constraints[num_constraints] = GenericJointConstraint::inert();
-                        num_constraints += 1;
-                        *j_id += 2 * multibody.ndofs();
+                        inert_slot(multibody, j_id, constraints, &mut num_constraints);
                     } else {
-                    super::unit_multibody_joint::unit_joint_limit_constraint_reusing(
-                        params,
-                        multibody,
-                        link,
-                        limits,
-                        self.coords[i],
-                        curr_free_dof,
-                        j_id,
-                        jacobians,
-                        constraints,
-                        &mut num_constraints,
-                        self.data.softness,
-                        &mut solved,
-                    );
+                        super::unit_multibody_joint::unit_joint_limit_constraint_reusing(
+                            params,
+                            multibody,
+                            link,
+                            limits,
+                            self.coords[i],
+                            curr_free_dof,
+                            j_id,
+                            jacobians,
+                            constraints,
+                            &mut num_constraints,
+                            self.data.softness,
+                            &mut solved,
+                        );
                     }
                     Some(limits)
                 } else {
@@ -493,4 +489,17 @@ impl MultibodyJoint {
 
         num_constraints
     }
+}
+
+/// PATCH (scasm-testbed): an inert constraint (one the solver skips) in the
+/// next slot, with its jacobian rows, for a limit the coordinate is within.
+fn inert_slot(
+    multibody: &Multibody,
+    j_id: &mut usize,
+    constraints: &mut [GenericJointConstraint],
+    num_constraints: &mut usize,
+) {
+    constraints[*num_constraints] = GenericJointConstraint::inert();
+    *num_constraints += 1;
+    *j_id += 2 * multibody.ndofs();
 }
