@@ -8,6 +8,7 @@ use rapier3d::dynamics::RigidBodyHandle;
 use rapier3d::geometry::{Collider, ColliderHandle, Ray};
 use rapier3d::math::{Pose, Real, Vector};
 use rapier3d::pipeline::{PhysicsWorld, QueryFilter};
+use std::ops::RangeInclusive;
 
 use crate::beacon::BeaconConfig;
 use crate::camera::CameraIntrinsics;
@@ -160,15 +161,15 @@ pub fn find_band(
         // Nothing can hide the band, so its pixels are those whose rays meet
         // it. The rays through one image row lie in one plane, which cuts the
         // band (a convex solid) in a convex section, so a row's pixels form
-        // one run: found from its two ends, its inside taken whole.
+        // one run: its two ends are searched for from the last row's, its
+        // inside taken whole.
+        let mut near = (c0, c0);
         for row in r0..=r1 {
-            let Some(first) = (c0..=c1).find(|&col| band_along(col, row).is_some()) else {
+            let hit = |col: u32| band_along(col, row).is_some();
+            let Some((first, last)) = run_in_row(hit, c0..=c1, near) else {
                 continue;
             };
-            let last = (first + 1..=c1)
-                .rev()
-                .find(|&col| band_along(col, row).is_some())
-                .unwrap_or(first);
+            near = (first, last);
             pixels.extend((first..=last).map(|col| (col, row)));
         }
     } else {
@@ -207,6 +208,46 @@ pub fn find_band(
         return Err(NoReading::CutByBorder);
     }
     Ok(BandBlob { pixels, rows, cols })
+}
+
+/// The run of columns in `cols` where `hit` holds, given that they are one run
+/// or none; `near` is a guess at its two ends (the last row's). Each end is
+/// searched for from its guess, so a run that moved little from row to row
+/// costs a few tests instead of the columns outside it.
+fn run_in_row(
+    hit: impl Fn(u32) -> bool,
+    cols: RangeInclusive<u32>,
+    near: (u32, u32),
+) -> Option<(u32, u32)> {
+    let (c0, c1) = (*cols.start(), *cols.end());
+    // The end of the run of hits next to `from`, stepping by `step` (-1: left).
+    let run_end = |from: u32, step: i32| {
+        let mut end = from;
+        while let Some(next) = end.checked_add_signed(step).filter(|c| cols.contains(c)) {
+            if !hit(next) {
+                break;
+            }
+            end = next;
+        }
+        end
+    };
+    let guess = near.0.clamp(c0, c1);
+    let first = if hit(guess) {
+        run_end(guess, -1)
+    } else if let Some(right) = (guess + 1..=c1).find(|&c| hit(c)) {
+        right
+    } else {
+        // The whole run is left of the guess: its right end first.
+        run_end((c0..guess).rev().find(|&c| hit(c))?, -1)
+    };
+    // The run's left end hits, so its right end is at or right of it.
+    let guess = near.1.clamp(first, c1);
+    let last = if hit(guess) {
+        run_end(guess, 1)
+    } else {
+        (first..guess).rev().find(|&c| hit(c)).unwrap_or(first)
+    };
+    Some((first, last))
 }
 
 /// Whether any collider but the beacon's own could stand between the camera and
@@ -360,4 +401,28 @@ pub fn render_rgb(intrinsics: &CameraIntrinsics, blob: Option<&BandBlob>) -> Vec
         }
     }
     img
+}
+
+#[cfg(test)]
+mod tests {
+    use super::run_in_row;
+
+    /// Every run (and no run) in a row of columns, from every guess: the run
+    /// found is the run, whatever the guess.
+    #[test]
+    fn a_rows_run_is_found_from_any_guess() {
+        let cols = 3..=14u32;
+        let mut runs = vec![None];
+        for a in cols.clone() {
+            runs.extend((a..=*cols.end()).map(|b| Some((a, b))));
+        }
+        for run in runs {
+            let hit = |c: u32| run.is_some_and(|(a, b)| (a..=b).contains(&c));
+            for g0 in 0..=16 {
+                for g1 in 0..=16 {
+                    assert_eq!(run_in_row(hit, cols.clone(), (g0, g1)), run, "guess ({g0}, {g1})");
+                }
+            }
+        }
+    }
 }
