@@ -420,7 +420,11 @@ mod tests {
             let hit = |c: u32| run.is_some_and(|(a, b)| (a..=b).contains(&c));
             for g0 in 0..=16 {
                 for g1 in 0..=16 {
-                    assert_eq!(run_in_row(hit, cols.clone(), (g0, g1)), run, "guess ({g0}, {g1})");
+                    assert_eq!(
+                        run_in_row(hit, cols.clone(), (g0, g1)),
+                        run,
+                        "guess ({g0}, {g1})"
+                    );
                 }
             }
         }
