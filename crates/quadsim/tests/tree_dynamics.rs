@@ -36,8 +36,8 @@ fn the_tree_dynamics_walk_the_robot_rapier_walks() {
             worst.0 * 1e3,
             worst.1.to_degrees()
         );
-        // Seen: 0.39 mm and 0.13 deg walking at 300 for 3 s, 0.33 mm and
-        // 0.08 deg walking back; the gait's stride is 30-40 mm.
+        // Seen: 0.17 mm and 0.04 deg walking at 300 for 3 s, 0.20 mm and
+        // 0.06 deg walking back; the gait's stride is 30-40 mm.
         assert!(worst.0 < 2e-3, "command {command}: {} m apart", worst.0);
         assert!(
             worst.1 < 0.5f64.to_radians(),

@@ -15,7 +15,9 @@
 //! definite matrix, so a matrix without that pattern is factored right, only
 //! with fill-in.
 //!
-//! The inverse `A^-1 = L^-1 D^-1 L^-T` is formed once per factorisation:
+//! The inverse `A^-1 = L^-1 D^-1 L^-T` is formed once per factorisation, row
+//! by row from the factors (Takahashi's equations, again only over the
+//! (coordinate, ancestor) pairs):
 //! every constraint row of a step (a joint motor, a limit, each contact row)
 //! needs `A^-1 J^T`, and a product with the inverse costs one contiguous
 //! multiply-add per non-zero of `J` (a unit motor row: one column; a contact
@@ -76,9 +78,6 @@ pub(crate) struct TreeLdl {
     /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
     /// it `D`; right of it scratch.
     a: Vec<Real>,
-    /// Row-major, padded: `(L^-1)^T = (L^T)^-1`, row `k` holding column `k`
-    /// of `L^-1`.
-    l_inv_t: Vec<Real>,
     /// Row-major, padded: the inverse (symmetric, so its rows are its columns).
     inv: Vec<Real>,
     /// A pivot of `D` was not positive: the matrix is not positive definite.
@@ -97,7 +96,7 @@ impl TreeLdl {
         assert!(n <= MAX_DIM, "TreeLdl factors at most {MAX_DIM} coordinates");
         let w = n.div_ceil(8).max(1) * 8;
         (self.n, self.w) = (n, w);
-        for buffer in [&mut self.a, &mut self.l_inv_t, &mut self.inv] {
+        for buffer in [&mut self.a, &mut self.inv] {
             buffer.clear();
             buffer.resize(n * w, 0.0);
         }
@@ -143,37 +142,27 @@ impl TreeLdl {
                 }
             }
         }
-        // The columns of L^-1, as the rows of (L^T)^-1, from the last up:
-        // row k = e_k - sum_{j > k} L_jk (row j), and row j is zero left of j.
-        let l_inv_t = self.l_inv_t.as_chunks_mut::<W>().0;
-        for k in (0..n).rev() {
-            let (head, tail) = l_inv_t.split_at_mut(k + 1);
-            let row = &mut head[k];
-            row[k] = 1.0;
-            for (j, row_j) in (k + 1..n).zip(tail.iter()) {
-                let ljk = a[j][k];
-                if ljk != 0.0 {
-                    row_sub(row, ljk, row_j, j / LANES..W / LANES);
-                }
-            }
-        }
-        // A^-1 = sum_k (column k of L^-1)(column k of L^-1)^T / d_k: row c
-        // gains column k scaled by (L^-1)_ck / d_k, in its lower triangle
-        // (column k of L^-1 is zero above k), which is then mirrored.
+        // The inverse Z, row by row from the first coordinate (the root's):
+        // A = L^T D L gives Z = D^-1 L^-T + (I - L) Z, and L^-T is upper
+        // triangular, so Z_ij = [i = j] / d_i - sum_{k < i} L_ik Z_kj for
+        // j <= i (Takahashi's equations), with L_ik non-zero only for k an
+        // ancestor of i. Row k's entries right of k are mirrored in from the
+        // later rows as each is finished; until row i is, row k's entries
+        // from i on are still zero, and so are row i's own.
         let inv = self.inv.as_chunks_mut::<W>().0;
-        for k in 0..n {
-            let dk_inv = 1.0 / a[k][k];
-            let col_k = &l_inv_t[k];
-            for c in k..n {
-                let wck = col_k[c];
-                if wck != 0.0 {
-                    row_add(&mut inv[c], wck * dk_inv, col_k, k / LANES..c / LANES + 1);
-                }
+        for i in 0..n {
+            let (done, rest) = inv.split_at_mut(i);
+            let row = &mut rest[0];
+            let ancestors = || (0..i).filter(|&k| a[i][k] != 0.0);
+            for k in ancestors() {
+                row_sub(row, a[i][k], &done[k], through(i));
             }
-        }
-        for c in 0..n {
-            for r in 0..c {
-                inv[r][c] = inv[c][r];
+            row[i] = 1.0 / a[i][i];
+            for k in ancestors() {
+                row[i] -= a[i][k] * row[k];
+            }
+            for (j, done_j) in done.iter_mut().enumerate() {
+                done_j[i] = row[j];
             }
         }
     }
