@@ -2182,6 +2182,7 @@ impl Multibody {
                 cfm_coeff: 0.0,
                 cfm_gain: 0.0,
                 writeback_id: WritebackId::Dof(0),
+                unit_dof2: usize::MAX,
             };
 
             j_id += 2 * ndofs;

@@ -130,6 +130,7 @@ pub(crate) fn unit_joint_limit_constraint_reusing(
         cfm_coeff,
         cfm_gain,
         writeback_id: WritebackId::Limit(dof_id),
+        unit_dof2: dof_j_id - *j_id,
     };
 
     constraints[*insert_at] = constraint;
@@ -216,6 +217,7 @@ pub(crate) fn unit_joint_friction_constraint_reusing(
         cfm_coeff,
         cfm_gain,
         writeback_id: WritebackId::Friction(dof_id),
+        unit_dof2: dof_j_id - *j_id,
     };
 
     constraints[*insert_at] = constraint;
@@ -318,6 +320,7 @@ pub(crate) fn unit_joint_motor_constraint_reusing(
         rhs: rhs_wo_bias,
         rhs_wo_bias,
         writeback_id: WritebackId::Limit(dof_id),
+        unit_dof2: dof_j_id - *j_id,
     };
 
     constraints[*insert_at] = constraint;

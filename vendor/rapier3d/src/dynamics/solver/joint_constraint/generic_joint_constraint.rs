@@ -30,6 +30,12 @@ pub struct GenericJointConstraint {
     pub cfm_gain: Real,
 
     pub writeback_id: WritebackId,
+    /// PATCH (scasm-testbed): for a row on one coordinate of a multibody
+    /// (`J = e_i` on the second body: a joint motor, limit or friction), `i`;
+    /// else `usize::MAX`. [`Self::solve`] then reads `J v` as `v_i` instead
+    /// of a dot product over every coordinate (the same value: the other
+    /// products are zeros).
+    pub unit_dof2: usize,
 }
 
 impl Default for GenericJointConstraint {
@@ -58,6 +64,7 @@ impl GenericJointConstraint {
             cfm_coeff: Real::MAX,
             cfm_gain: Real::MAX,
             writeback_id: WritebackId::Dof(0),
+            unit_dof2: usize::MAX,
         }
     }
 
@@ -308,8 +315,12 @@ impl GenericJointConstraint {
         let vel1 = j1.dot(&solver_vel1);
 
         let solver_vel2 = self.solver_vel2(solver_vels, generic_solver_vels);
-        let j2 = DVectorView::from_slice(&jacobians[self.j_id2..], self.ndofs2);
-        let vel2 = j2.dot(&solver_vel2);
+        let vel2 = if self.unit_dof2 != usize::MAX {
+            solver_vel2[self.unit_dof2]
+        } else {
+            let j2 = DVectorView::from_slice(&jacobians[self.j_id2..], self.ndofs2);
+            j2.dot(&solver_vel2)
+        };
 
         let dvel = self.rhs + (vel2 - vel1);
         let total_impulse = na::clamp(
