@@ -36,6 +36,10 @@ use na::DMatrix;
 /// The entries a row operation handles at a time (one SSE register).
 const LANES: usize = 4;
 
+/// A row's padded length is a multiple of this: the widths `eliminate` and
+/// `solve_w` are compiled for.
+const ROW_PAD: usize = 8;
+
 /// The largest dimension factored here; [`TreeLdl::factor`] refuses larger.
 pub(crate) const MAX_DIM: usize = 64;
 
@@ -73,7 +77,7 @@ fn through(last: usize) -> Range<usize> {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TreeLdl {
     n: usize,
-    /// The padded row length, a multiple of 8, at most [`MAX_DIM`].
+    /// The padded row length, a multiple of [`ROW_PAD`], at most [`MAX_DIM`].
     w: usize,
     /// Row-major, padded: below the diagonal `L` (unit diagonal implied), on
     /// it `D`; right of it scratch.
@@ -94,7 +98,7 @@ impl TreeLdl {
     /// its inverse.
     pub(crate) fn factor(&mut self, m: &DMatrix<Real>, n: usize) {
         assert!(n <= MAX_DIM, "TreeLdl factors at most {MAX_DIM} coordinates");
-        let w = n.div_ceil(8).max(1) * 8;
+        let w = n.div_ceil(ROW_PAD).max(1) * ROW_PAD;
         (self.n, self.w) = (n, w);
         for buffer in [&mut self.a, &mut self.inv] {
             buffer.clear();
