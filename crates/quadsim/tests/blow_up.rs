@@ -17,6 +17,12 @@ fn peak_share(urdf: &str, command: f64, seconds: f64) -> (f64, Option<f64>) {
         sim.step();
         let energy = sim.kinetic_energy_j();
         assert!(energy.is_finite() && energy >= 0.0, "{energy} J");
+        // The cheap bound the step tests first is never below the energy.
+        let bound = sim.kinetic_energy_bound_j();
+        assert!(
+            bound >= energy * (1.0 - 1e-6),
+            "bound {bound} J below {energy} J"
+        );
         peak = peak.max(energy);
     }
     assert!(sim.is_upright());

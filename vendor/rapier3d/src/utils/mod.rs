@@ -6,6 +6,8 @@ mod component_mul;
 mod copysign;
 mod cross_product;
 mod cross_product_matrix;
+// PATCH (scasm-testbed): slice kernels for the solver's multibody rows.
+mod dense_rows;
 mod dot_product;
 mod fp_flags;
 mod index_mut2;
@@ -42,6 +44,7 @@ pub use simd_select::SimdSelect;
 pub use angular_inertia_ops::AngularInertiaOps;
 pub use cross_product::CrossProduct;
 pub use cross_product_matrix::CrossProductMatrix;
+pub(crate) use dense_rows::{add_scaled, dot_as_nalgebra};
 pub use dot_product::{DotProduct, SimdLength};
 #[allow(unused_imports)]
 pub(crate) use fp_flags::DisableFloatingPointExceptionsFlags;

@@ -9,7 +9,7 @@ use crate::dynamics::{
     RigidBodyVelocity,
 };
 use crate::math::{
-    ANG_DIM, AngDim, AngVector, DIM, DVector, Dim, Jacobian, Pose, Real, SPATIAL_DIM,
+    ANG_DIM, AngDim, AngVector, AngularInertia, DIM, DVector, Dim, Jacobian, Pose, Real, SPATIAL_DIM,
     SimdAngVector, Vector,
 };
 use crate::prelude::MultibodyJoint;
@@ -443,6 +443,12 @@ pub struct Multibody {
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
     mj_workspace: Vec<[Real; 3 * DIM]>,
+    /// PATCH (scasm-testbed): each link's effective world angular inertia,
+    /// as `update_mass_matrix` last read it (the inverse of the body's world
+    /// inverse inertia): `update_acceleration`, which follows it in the
+    /// same step, reuses it instead of inverting again. Same values.
+    #[cfg_attr(feature = "serde-serialize", serde(skip))]
+    link_inertia: Vec<AngularInertia>,
     /// PATCH (scasm-testbed): how the free motion and the constraints'
     /// responses are computed (see [`MultibodyDynamics`]).
     dynamics: MultibodyDynamics,
@@ -484,6 +490,7 @@ impl Multibody {
             link_dofs: Vec::new(),
             link_dofs_signature: Vec::new(),
             mj_workspace: Vec::new(),
+            link_inertia: Vec::new(),
             root_is_dynamic: false,
             self_contacts_enabled,
             couplings: Vec::new(),
@@ -941,7 +948,8 @@ impl Multibody {
             // TODO: should gyroscopic forces already be computed by the rigid-body itself
             //       (at the same time that we add the gravity force)?
             let gyroscopic;
-            let rb_inertia = rb.mprops.effective_angular_inertia();
+            // PATCH (scasm-testbed): as `update_mass_matrix` computed it.
+            let rb_inertia = self.link_inertia[i];
             let rb_mass = rb.mprops.effective_mass();
 
             #[cfg(feature = "dim3")]
@@ -961,9 +969,13 @@ impl Multibody {
             );
             // PATCH (scasm-testbed): `gemv_tr` on the link's columns, as
             // nalgebra computes each (the others are zero and add nothing).
-            let (jacobian, f) = (&self.body_jacobians[i], external_forces.as_vector());
+            let (jacobian, f) = (
+                self.body_jacobians[i].as_slice(),
+                external_forces.as_vector().as_slice(),
+            );
             for &c in &self.link_dofs[i] {
-                let val = jacobian.column(c).dot(f);
+                let col = &jacobian[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
+                let val = crate::utils::dot_as_nalgebra(col, f);
                 self.accelerations[c] = 1.0 * val + 1.0 * self.accelerations[c];
             }
 
@@ -1251,6 +1263,13 @@ impl Multibody {
         if self.ndofs == 0 {
             return; // Nothing to do.
         }
+        // PATCH (scasm-testbed): the links' inertias, once a step.
+        self.link_inertia.clear();
+        self.link_inertia.extend(
+            self.links
+                .iter()
+                .map(|link| bodies[link.rigid_body].mprops.effective_angular_inertia()),
+        );
         if self.dynamics == MultibodyDynamics::Tree {
             self.update_mass_matrix_tree(dt, bodies);
             return;
@@ -1282,7 +1301,7 @@ impl Multibody {
             let link = &self.links[i];
             let rb = &bodies[link.rigid_body];
             let rb_mass = rb.mprops.effective_mass();
-            let rb_inertia = rb.mprops.effective_angular_inertia().into_matrix();
+            let rb_inertia = self.link_inertia[i].into_matrix(); // PATCH (scasm-testbed)
             let body_jacobian = &self.body_jacobians[i];
 
             // NOTE: the mass matrix index reordering operates on the assumption that the assembly
@@ -1612,13 +1631,14 @@ impl Multibody {
         }
     }
 
-    /// PATCH (scasm-testbed): adds the joint-space mass matrix `sum J^T M J`
-    /// over the links to `self.augmented_mass`, by the composite-rigid-body
+    /// PATCH (scasm-testbed): adds the upper triangle of the joint-space mass
+    /// matrix `sum J^T M J` over the links to `self.augmented_mass` (the tree's
+    /// factorisation reads no other; the lower stays zero), by the composite-rigid-body
     /// algorithm (Featherstone 2008, section 6.2) in world coordinates: every
     /// spatial quantity is taken about one point `o` (the root's centre of
     /// mass), so that a subtree's inertia is the plain sum of its links' and a
     /// coordinate's force needs no transform on its way up the tree. Entry
-    /// `(k, j)`, for `j` an ancestor of `k` or `k` itself, is `s_j . (I_k s_k)`
+    /// `(j, k)`, for `j` an ancestor of `k` or `k` itself, is `s_j . (I_k s_k)`
     /// with `s` a coordinate's motion about `o` (from its link's body
     /// jacobian) and `I_k` the inertia of the subtree it moves; the others are
     /// zero.
@@ -1632,12 +1652,12 @@ impl Multibody {
         }
         let o = vect_to_na(bodies[self.links[0].rigid_body].mprops.world_com);
         let mut composite: Vec<Composite> = Vec::with_capacity(self.links.len());
-        for link in self.links.iter() {
+        for (link, link_inertia) in self.links.iter().zip(&self.link_inertia) {
             let rb = &bodies[link.rigid_body];
             // The effective masses of a multibody link are isotropic (no locked axes).
             let mass = rb.mprops.effective_mass().x;
             let r = vect_to_na(rb.mprops.world_com) - o;
-            let inertia = mat_to_na(rb.mprops.effective_angular_inertia().into_matrix())
+            let inertia = mat_to_na(link_inertia.into_matrix())
                 + (na::Matrix3::identity() * r.norm_squared() - r * r.transpose()) * mass;
             composite.push(Composite {
                 mass,
@@ -1691,10 +1711,9 @@ impl Multibody {
                     for r in 0..SPATIAL_DIM {
                         m += sj[r] * f[r];
                     }
+                    // The upper triangle only: the factorisation reads no
+                    // other (`TreeLdl::factor`).
                     out[k * rows + j] += m;
-                    if j != k {
-                        out[j * rows + k] += m;
-                    }
                 }
             }
         }
@@ -1719,6 +1738,15 @@ impl Multibody {
         } else {
             self.update_body_jacobians();
             self.update_mass_matrix(dt, bodies);
+            if self.dynamics == MultibodyDynamics::Tree {
+                // A step assembles the upper triangle only; mirror it.
+                let m = &mut self.augmented_mass;
+                for k in 0..m.ncols() {
+                    for j in 0..k {
+                        m[(k, j)] = m[(j, k)];
+                    }
+                }
+            }
         }
     }
 
@@ -2630,11 +2658,13 @@ impl Multibody {
         let link = &self.links[link_id];
         // PATCH (scasm-testbed): `tr_mul_to` on the link's columns, as
         // nalgebra computes each; the others' products are zero.
-        let jacobian = &self.body_jacobians[link.internal_id];
-        jacobians.as_mut_slice()[*j_id..*j_id + self.ndofs].fill(0.0);
+        let jacobian = self.body_jacobians[link.internal_id].as_slice();
+        let (out, f) = (jacobians.as_mut_slice(), force.as_vector().as_slice());
+        out[*j_id..*j_id + self.ndofs].fill(0.0);
         let dofs = &self.link_dofs[link.internal_id];
         for &c in dofs {
-            jacobians[*j_id + c] = jacobian.column(c).dot(force.as_vector());
+            let col = &jacobian[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
+            out[*j_id + c] = crate::utils::dot_as_nalgebra(col, f);
         }
 
         // PATCH (scasm-testbed): with the tree's factors, `M^-1 J` is solved

@@ -51,11 +51,11 @@ impl GenericRhs {
     ) -> Real {
         match self {
             GenericRhs::SolverVel(rhs) => dir.dot(rhs.linear) + gcross.gdot(rhs.angular),
-            GenericRhs::GenericId(solver_vel) => {
-                let j = jacobians.rows(j_id, ndofs);
-                let rhs = solver_vels.rows(*solver_vel as usize, ndofs);
-                j.dot(&rhs)
-            }
+            // PATCH (scasm-testbed): on slices, nalgebra's order (same bits).
+            GenericRhs::GenericId(solver_vel) => crate::utils::dot_as_nalgebra(
+                &jacobians.as_slice()[j_id..][..ndofs],
+                &solver_vels.as_slice()[*solver_vel as usize..][..ndofs],
+            ),
             GenericRhs::Fixed => 0.0,
         }
     }
@@ -85,11 +85,14 @@ impl GenericRhs {
                     rhs.angular += ii_torque_dir * impulse;
                 }
             }
+            // PATCH (scasm-testbed): on slices, nalgebra's `axpy` (same bits).
             GenericRhs::GenericId(solver_vel) => {
                 let wj_id = j_id + ndofs;
-                let wj = jacobians.rows(wj_id, ndofs);
-                let mut rhs = solver_vels.rows_mut(*solver_vel as usize, ndofs);
-                rhs.axpy(impulse, &wj, 1.0);
+                crate::utils::add_scaled(
+                    &mut solver_vels.as_mut_slice()[*solver_vel as usize..][..ndofs],
+                    impulse,
+                    &jacobians.as_slice()[wj_id..][..ndofs],
+                );
             }
             GenericRhs::Fixed => {}
         }

@@ -310,6 +310,31 @@ impl GenericJointConstraint {
         }
         let jacobians = jacobians.as_slice();
 
+        // PATCH (scasm-testbed): a multibody's own constraint (no first
+        // body: its `J v` over nothing is zero) runs on slices of the
+        // multibody's velocities, with nalgebra's operations in nalgebra's
+        // order (same bits, without a view per call).
+        if self.solver_vel1 == u32::MAX && !self.is_rigid_body2 && self.solver_vel2 != u32::MAX {
+            let n = self.ndofs2;
+            let v = &mut generic_solver_vels.as_mut_slice()[self.solver_vel2 as usize..][..n];
+            let vel1: Real = 0.0;
+            let vel2 = if self.unit_dof2 != usize::MAX {
+                v[self.unit_dof2]
+            } else {
+                crate::utils::dot_as_nalgebra(&jacobians[self.j_id2..][..n], v)
+            };
+            let dvel = self.rhs + (vel2 - vel1);
+            let total_impulse = na::clamp(
+                self.impulse + self.inv_lhs * (dvel - self.cfm_gain * self.impulse),
+                self.impulse_bounds[0],
+                self.impulse_bounds[1],
+            );
+            let delta_impulse = total_impulse - self.impulse;
+            self.impulse = total_impulse;
+            crate::utils::add_scaled(v, -delta_impulse, &jacobians[self.wj_id2()..][..n]);
+            return;
+        }
+
         let solver_vel1 = self.solver_vel1(solver_vels, generic_solver_vels);
         let j1 = DVectorView::from_slice(&jacobians[self.j_id1..], self.ndofs1);
         let vel1 = j1.dot(&solver_vel1);
