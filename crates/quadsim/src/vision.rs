@@ -90,6 +90,15 @@ pub struct Frame {
     pub bearing_rad: Option<f64>,
 }
 
+/// The 24 directions, every 15 degrees, at which the band's rims are
+/// projected to bound its silhouette: `[cos, sin]`, computed once.
+static RIM_DIRECTIONS: std::sync::LazyLock<[[f64; 2]; 24]> = std::sync::LazyLock::new(|| {
+    core::array::from_fn(|k| {
+        let a = k as f64 * core::f64::consts::TAU / 24.0;
+        [a.cos(), a.sin()]
+    })
+});
+
 /// Finds the band's pixels in the image of a camera at `camera_pose`: a pixel
 /// shows the band when its ray meets the band (exactly, analytically) and nothing
 /// else in the physics world first. The bodies the camera is mounted on,
@@ -112,12 +121,11 @@ pub fn find_band(
     // them in the image is out of view, some of them is cut by the border.
     let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
     let (mut inside, mut total) = (0, 0);
-    for k in 0..24 {
-        let a = f64::from(k) * core::f64::consts::TAU / 24.0;
+    for &[cos, sin] in RIM_DIRECTIONS.iter() {
         for z in [beacon.band_bottom_m(), beacon.band_top_m()] {
             let w = Vector::new(
-                (beacon.xy_m[0] + beacon.radius_m * a.cos()) as Real,
-                (beacon.xy_m[1] + beacon.radius_m * a.sin()) as Real,
+                (beacon.xy_m[0] + beacon.radius_m * cos) as Real,
+                (beacon.xy_m[1] + beacon.radius_m * sin) as Real,
                 z as Real,
             );
             let c = camera_pose.inverse_transform_point(w);

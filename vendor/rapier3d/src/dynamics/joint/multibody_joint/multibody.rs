@@ -2673,8 +2673,9 @@ impl Multibody {
         if let Some(tree) = self.tree_factors() {
             let n = self.ndofs;
             let (j, invm_j) = jacobians.as_mut_slice()[*j_id..*j_id + 2 * n].split_at_mut(n);
-            invm_j.copy_from_slice(j);
-            tree.solve(invm_j);
+            if !tree.solve_sparse_into(j, dofs, invm_j) {
+                invm_j.copy_from_slice(j); // As `solve` leaves it: unsolved.
+            }
             let v = self.velocities.as_slice();
             let (mut j_invm_j, mut j_v) = (0.0, 0.0);
             for &c in dofs {

@@ -202,6 +202,40 @@ impl TreeLdl {
         true
     }
 
+    /// `out = A^-1 x` for an `x` that is zero outside `cols` (ascending):
+    /// the products [`Self::solve`] forms, in its order, over `cols` only.
+    /// `false`, leaving `out` as it was, if `A` was not positive definite.
+    pub(crate) fn solve_sparse_into(&self, x: &[Real], cols: &[usize], out: &mut [Real]) -> bool {
+        debug_assert_eq!((x.len(), out.len()), (self.n, self.n));
+        debug_assert!(cols.windows(2).all(|p| p[0] < p[1]));
+        if self.singular {
+            return false;
+        }
+        match self.w {
+            8 => self.solve_sparse_w::<8>(x, cols, out),
+            16 => self.solve_sparse_w::<16>(x, cols, out),
+            24 => self.solve_sparse_w::<24>(x, cols, out),
+            32 => self.solve_sparse_w::<32>(x, cols, out),
+            40 => self.solve_sparse_w::<40>(x, cols, out),
+            48 => self.solve_sparse_w::<48>(x, cols, out),
+            56 => self.solve_sparse_w::<56>(x, cols, out),
+            _ => self.solve_sparse_w::<64>(x, cols, out),
+        }
+        true
+    }
+
+    fn solve_sparse_w<const W: usize>(&self, x: &[Real], cols: &[usize], out: &mut [Real]) {
+        let inv = self.inv.as_chunks::<W>().0;
+        let mut y = [0.0 as Real; W];
+        for &c in cols {
+            let xc = x[c];
+            if xc != 0.0 {
+                row_add(&mut y, xc, &inv[c], 0..W / LANES);
+            }
+        }
+        out.copy_from_slice(&y[..self.n]);
+    }
+
     fn solve_w<const W: usize>(&self, x: &mut [Real]) {
         let inv = self.inv.as_chunks::<W>().0;
         let mut y = [0.0 as Real; W];
@@ -273,6 +307,31 @@ mod test {
             parent.extend([5, base, base + 1]);
         }
         check_against_lu(&tree_matrix(&parent, 7));
+    }
+
+    #[test]
+    fn a_sparse_right_hand_side_solves_to_the_same_bits() {
+        let mut parent = vec![usize::MAX, 0, 1, 2, 3, 4];
+        for _ in 0..4 {
+            let base = parent.len();
+            parent.extend([5, base, base + 1]);
+        }
+        let m = tree_matrix(&parent, 11);
+        let n = m.nrows();
+        let mut ldl = TreeLdl::default();
+        ldl.factor(&m, n);
+        // A contact on the second leg: the base's and that leg's columns.
+        let cols: Vec<usize> = (0..6).chain(9..12).collect();
+        let mut x = vec![0.0f32; n];
+        for (k, &c) in cols.iter().enumerate() {
+            x[c] = if k == 4 { 0.0 } else { 0.3 - 0.07 * k as f32 };
+        }
+        let mut want = x.clone();
+        assert!(ldl.solve(&mut want));
+        let mut got = vec![f32::NAN; n];
+        assert!(ldl.solve_sparse_into(&x, &cols, &mut got));
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&got), bits(&want));
     }
 
     #[test]
