@@ -1156,6 +1156,27 @@ impl RigidBodyCcd {
         local_com: Vector,
         max_extent: Real,
     ) -> bool {
+        // PATCH (scasm-testbed): the same verdict, most often without the
+        // exact motion. It is fast iff either of the two estimates below
+        // passes the threshold (a NaN passes nothing), so the velocity one is
+        // tested first; then the pose delta is bounded from above by
+        // `|t2 - t1| + 2 sin(θ/2) (|c| + max_extent)` (θ the rotation
+        // between the poses, `sin(θ/2) <= min(|q2 - q1|, |q2 + q1|)`): below
+        // the threshold with a margin far beyond f32 rounding, the exact
+        // motion is below it too.
+        let threshold = Self::FAST_BODY_SAFETY_FACTOR * self.ccd_thickness;
+        if self.max_point_velocity(vels, max_extent) * dt > threshold {
+            return true;
+        }
+        let (q1, q2) = (pos.position.rotation, pos.next_position.rotation);
+        let sin_half = (q2 - q1).length_squared().min((q2 + q1).length_squared()).sqrt();
+        let reach = local_com.length() + max_extent;
+        let bound = (pos.next_position.translation - pos.position.translation).length()
+            + 2.0 * sin_half * reach;
+        if bound * 1.001 + 1.0e-6 * reach < threshold {
+            return false;
+        }
+
         let com1 = pos.position * local_com;
         let com2 = pos.next_position * local_com;
 
@@ -1506,6 +1527,69 @@ impl RigidBodyActivation {
 mod tests {
     use super::*;
     use crate::math::Real;
+
+    /// PATCH (scasm-testbed): upstream's fast-body test with the next
+    /// position, unchanged, to check the patched one's early verdicts against.
+    #[cfg(feature = "dim3")]
+    fn moving_fast_as_upstream(
+        ccd: &RigidBodyCcd,
+        dt: Real,
+        vels: &RigidBodyVelocity<Real>,
+        pos: &RigidBodyPosition,
+        local_com: Vector,
+        max_extent: Real,
+    ) -> bool {
+        let com1 = pos.position * local_com;
+        let com2 = pos.next_position * local_com;
+        let delta_rot = pos.next_position.rotation * pos.position.rotation.inverse();
+        let angular_delta =
+            2.0 * Vector::new(delta_rot.x, delta_rot.y, delta_rot.z).length() * max_extent;
+        let max_delta_position = (com2 - com1).length() + angular_delta;
+        let max_velocity = ccd.max_point_velocity(vels, max_extent);
+        let max_motion = max_delta_position.max(max_velocity * dt);
+        max_motion > RigidBodyCcd::FAST_BODY_SAFETY_FACTOR * ccd.ccd_thickness
+    }
+
+    #[cfg(feature = "dim3")]
+    #[test]
+    fn the_fast_body_verdict_is_upstreams() {
+        // Pose pairs moved by every scale around the threshold, with the
+        // velocities either far below it or near it.
+        let mut state = 12345u32;
+        let mut next = || {
+            state = state.wrapping_mul(1664525).wrapping_add(1013904223);
+            (state >> 8) as Real / (1u32 << 24) as Real - 0.5
+        };
+        let mut verdicts = [0usize; 2];
+        for case in 0..20_000 {
+            let scale = (10.0 as Real).powi(case % 6 - 5);
+            let axis = Vector::new(next(), next(), next()).normalize_or(Vector::X);
+            let q1 = Rotation::from_axis_angle(axis, 6.0 * next());
+            let q2 = Rotation::from_axis_angle(axis.cross(Vector::Y).normalize_or(Vector::X), 40.0 * scale * next()) * q1;
+            let t1 = Vector::new(next(), next(), next());
+            let t2 = t1 + Vector::new(next(), next(), next()) * scale;
+            let pos = RigidBodyPosition {
+                position: Pose::from_parts(t1, q1),
+                next_position: Pose::from_parts(t2, q2.normalize()),
+            };
+            let vels = RigidBodyVelocity {
+                linvel: Vector::new(next(), next(), next()) * scale * 50.0,
+                angvel: Vector::new(next(), next(), next()) * scale * 50.0,
+            };
+            let ccd = RigidBodyCcd {
+                ccd_thickness: 0.01,
+                ..Default::default()
+            };
+            let local_com = Vector::new(next(), next(), next()) * 0.1;
+            let (dt, extent) = (0.004, 0.05 + 0.1 * next().abs());
+            let want = moving_fast_as_upstream(&ccd, dt, &vels, &pos, local_com, extent);
+            let got = ccd.is_moving_fast_with_next_position(dt, &vels, &pos, local_com, extent);
+            assert_eq!(got, want, "case {case}");
+            verdicts[want as usize] += 1;
+        }
+        // Both verdicts are exercised.
+        assert!(verdicts[0] > 1000 && verdicts[1] > 1000, "{verdicts:?}");
+    }
 
     #[test]
     fn heavy_body_under_gravity_is_not_moving_fast() {

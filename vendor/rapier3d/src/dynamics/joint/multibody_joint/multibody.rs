@@ -443,12 +443,13 @@ pub struct Multibody {
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
     mj_workspace: Vec<[Real; 3 * DIM]>,
-    /// PATCH (scasm-testbed): each link's effective world angular inertia,
-    /// as `update_mass_matrix` last read it (the inverse of the body's world
-    /// inverse inertia): `update_acceleration`, which follows it in the
-    /// same step, reuses it instead of inverting again. Same values.
+    /// PATCH (scasm-testbed): each link's effective mass and world angular
+    /// inertia, as `update_mass_matrix` last read them (the inverses of the
+    /// body's inverse mass and world inverse inertia): `update_acceleration`,
+    /// which follows it in the same step, reuses them instead of inverting
+    /// again. Same values.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
-    link_inertia: Vec<AngularInertia>,
+    link_inertia: Vec<(Vector, AngularInertia)>,
     /// PATCH (scasm-testbed): how the free motion and the constraints'
     /// responses are computed (see [`MultibodyDynamics`]).
     dynamics: MultibodyDynamics,
@@ -949,8 +950,7 @@ impl Multibody {
             //       (at the same time that we add the gravity force)?
             let gyroscopic;
             // PATCH (scasm-testbed): as `update_mass_matrix` computed it.
-            let rb_inertia = self.link_inertia[i];
-            let rb_mass = rb.mprops.effective_mass();
+            let (rb_mass, rb_inertia) = self.link_inertia[i];
 
             #[cfg(feature = "dim3")]
             {
@@ -973,10 +973,11 @@ impl Multibody {
                 self.body_jacobians[i].as_slice(),
                 external_forces.as_vector().as_slice(),
             );
+            let accs = self.accelerations.as_mut_slice();
             for &c in &self.link_dofs[i] {
                 let col = &jacobian[SPATIAL_DIM * c..SPATIAL_DIM * (c + 1)];
                 let val = crate::utils::dot_as_nalgebra(col, f);
-                self.accelerations[c] = 1.0 * val + 1.0 * self.accelerations[c];
+                accs[c] = 1.0 * val + 1.0 * accs[c];
             }
 
             if check_implicit_coriolis_divergence {
@@ -1265,11 +1266,10 @@ impl Multibody {
         }
         // PATCH (scasm-testbed): the links' inertias, once a step.
         self.link_inertia.clear();
-        self.link_inertia.extend(
-            self.links
-                .iter()
-                .map(|link| bodies[link.rigid_body].mprops.effective_angular_inertia()),
-        );
+        self.link_inertia.extend(self.links.iter().map(|link| {
+            let mprops = &bodies[link.rigid_body].mprops;
+            (mprops.effective_mass(), mprops.effective_angular_inertia())
+        }));
         if self.dynamics == MultibodyDynamics::Tree {
             self.update_mass_matrix_tree(dt, bodies);
             return;
@@ -1300,8 +1300,8 @@ impl Multibody {
         for i in 0..self.links.len() {
             let link = &self.links[i];
             let rb = &bodies[link.rigid_body];
-            let rb_mass = rb.mprops.effective_mass();
-            let rb_inertia = self.link_inertia[i].into_matrix(); // PATCH (scasm-testbed)
+            let (rb_mass, rb_inertia) = self.link_inertia[i]; // PATCH (scasm-testbed)
+            let rb_inertia = rb_inertia.into_matrix();
             let body_jacobian = &self.body_jacobians[i];
 
             // NOTE: the mass matrix index reordering operates on the assumption that the assembly
@@ -1558,14 +1558,16 @@ impl Multibody {
         self.composite_rigid_body_mass_matrix(bodies);
 
         let dt2 = dt * dt;
+        let rows = self.augmented_mass.nrows();
+        let mass = self.augmented_mass.as_mut_slice();
+        let (damping, armature) = (self.damping.as_slice(), self.armature.as_slice());
         for link in self.links.iter() {
             let mut idx = link.assembly_id;
             let locked = link.joint.data.locked_axes.bits();
             for a in 0..SPATIAL_DIM {
                 if (locked >> a) & 1 == 0 {
                     let k = link.joint.spring_stiffness[a];
-                    self.augmented_mass[(idx, idx)] +=
-                        self.damping[idx] * dt + self.armature[idx] + k * dt2;
+                    mass[idx * rows + idx] += damping[idx] * dt + armature[idx] + k * dt2;
                     idx += 1;
                 }
             }
@@ -1652,10 +1654,10 @@ impl Multibody {
         }
         let o = vect_to_na(bodies[self.links[0].rigid_body].mprops.world_com);
         let mut composite: Vec<Composite> = Vec::with_capacity(self.links.len());
-        for (link, link_inertia) in self.links.iter().zip(&self.link_inertia) {
+        for (link, (link_mass, link_inertia)) in self.links.iter().zip(&self.link_inertia) {
             let rb = &bodies[link.rigid_body];
             // The effective masses of a multibody link are isotropic (no locked axes).
-            let mass = rb.mprops.effective_mass().x;
+            let mass = link_mass.x;
             let r = vect_to_na(rb.mprops.world_com) - o;
             let inertia = mat_to_na(link_inertia.into_matrix())
                 + (na::Matrix3::identity() * r.norm_squared() - r * r.transpose()) * mass;
