@@ -678,32 +678,35 @@ impl QuadrupedSim {
         // About each body's principal axes: rapier's own `kinetic_energy`
         // inverts the world inverse inertia, which is not finite for a link
         // without inertia about some axis (a sensor's frame, say).
-        self.links
-            .iter()
-            .map(|(_, handle, _)| {
-                let body = &self.world.bodies[*handle];
-                let local = &body.mass_properties().local_mprops;
-                let axes = body.position().rotation * local.principal_inertia_local_frame;
-                let w = axes.inverse() * body.angvel();
-                let i = local.principal_inertia();
-                let spin = i.x * w.x * w.x + i.y * w.y * w.y + i.z * w.z * w.z;
-                0.5 * f64::from(local.mass() * body.linvel().length_squared() + spin)
-            })
-            .sum()
+        self.links_energy_j(|body, local| {
+            let axes = body.position().rotation * local.principal_inertia_local_frame;
+            let w = axes.inverse() * body.angvel();
+            let i = local.principal_inertia();
+            i.x * w.x * w.x + i.y * w.y * w.y + i.z * w.z * w.z
+        })
     }
 
     /// An upper bound on [`Self::kinetic_energy_j`] without rotating into
     /// each body's principal axes: each body's spin taken about its largest
     /// principal moment, `I w . w <= I_max |w|^2`. J.
     pub fn kinetic_energy_bound_j(&self) -> f64 {
+        self.links_energy_j(|body, local| {
+            local.principal_inertia().max_element() * body.angvel().length_squared()
+        })
+    }
+
+    /// The links' kinetic energy, J, each link's rotational part `I w . w`
+    /// (twice its energy) given by `spin`.
+    fn links_energy_j(
+        &self,
+        spin: impl Fn(&rapier3d::prelude::RigidBody, &rapier3d::prelude::MassProperties) -> f32,
+    ) -> f64 {
         self.links
             .iter()
             .map(|(_, handle, _)| {
                 let body = &self.world.bodies[*handle];
                 let local = &body.mass_properties().local_mprops;
-                let i_max = local.principal_inertia().max_element();
-                let spin = i_max * body.angvel().length_squared();
-                0.5 * f64::from(local.mass() * body.linvel().length_squared() + spin)
+                0.5 * f64::from(local.mass() * body.linvel().length_squared() + spin(body, local))
             })
             .sum()
     }

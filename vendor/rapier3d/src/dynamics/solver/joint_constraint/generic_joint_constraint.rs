@@ -297,6 +297,22 @@ impl GenericJointConstraint {
         }
     }
 
+    /// PATCH (scasm-testbed): the row's projected impulse step for the
+    /// bodies' `J v` (`vel1`, `vel2`): updates the accumulated impulse and
+    /// returns the change (upstream's arithmetic, moved out of `solve`).
+    #[inline]
+    fn take_impulse_step(&mut self, vel1: Real, vel2: Real) -> Real {
+        let dvel = self.rhs + (vel2 - vel1);
+        let total_impulse = na::clamp(
+            self.impulse + self.inv_lhs * (dvel - self.cfm_gain * self.impulse),
+            self.impulse_bounds[0],
+            self.impulse_bounds[1],
+        );
+        let delta_impulse = total_impulse - self.impulse;
+        self.impulse = total_impulse;
+        delta_impulse
+    }
+
     pub fn solve(
         &mut self,
         jacobians: &DVector,
@@ -323,14 +339,7 @@ impl GenericJointConstraint {
             } else {
                 crate::utils::dot_as_nalgebra(&jacobians[self.j_id2..][..n], v)
             };
-            let dvel = self.rhs + (vel2 - vel1);
-            let total_impulse = na::clamp(
-                self.impulse + self.inv_lhs * (dvel - self.cfm_gain * self.impulse),
-                self.impulse_bounds[0],
-                self.impulse_bounds[1],
-            );
-            let delta_impulse = total_impulse - self.impulse;
-            self.impulse = total_impulse;
+            let delta_impulse = self.take_impulse_step(vel1, vel2);
             crate::utils::add_scaled(v, -delta_impulse, &jacobians[self.wj_id2()..][..n]);
             return;
         }
@@ -347,14 +356,7 @@ impl GenericJointConstraint {
             j2.dot(&solver_vel2)
         };
 
-        let dvel = self.rhs + (vel2 - vel1);
-        let total_impulse = na::clamp(
-            self.impulse + self.inv_lhs * (dvel - self.cfm_gain * self.impulse),
-            self.impulse_bounds[0],
-            self.impulse_bounds[1],
-        );
-        let delta_impulse = total_impulse - self.impulse;
-        self.impulse = total_impulse;
+        let delta_impulse = self.take_impulse_step(vel1, vel2);
 
         let mut solver_vel1 = self.solver_vel1_mut(solver_vels, generic_solver_vels);
         let wj1 = DVectorView::from_slice(&jacobians[self.wj_id1()..], self.ndofs1);
