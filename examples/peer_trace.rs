@@ -5,7 +5,8 @@
 //! the time step, the servo gains and torque limits, the joints in order, the
 //! start, and this build's full step (servos, walk engine and 20 Hz camera
 //! included) in microseconds, the best of `--repeats` runs, with its contact
-//! points per step.
+//! points per step. Only the steps are timed: building the robot and its world
+//! is not, as the peer's model compilation is not.
 //!
 //! `scripts/peer/compare.sh` runs this and then MuJoCo on the same targets.
 //!
@@ -57,15 +58,18 @@ fn robot(name: Option<&str>) -> Result<(RobotDescription, SimConfig, String)> {
 }
 
 /// Runs the motion from a fresh robot; calls `each` after every step.
+/// Returns the wall time of the steps alone, s: building the robot and its
+/// world is not timed, as the peer's model compilation is not.
 fn run(
     d: &RobotDescription,
     config: SimConfig,
     args: &Args,
     mut each: impl FnMut(&QuadrupedSim),
-) -> Result<()> {
+) -> Result<f64> {
     let mut sim = QuadrupedSim::new(d, config)?;
     let steps = (args.seconds / config.dt_s).round() as usize;
     let stand = (0.5 / config.dt_s).round() as usize;
+    let started = Instant::now();
     for k in 0..steps {
         if k == stand {
             sim.set_command(args.command)?;
@@ -73,7 +77,7 @@ fn run(
         sim.step();
         each(&sim);
     }
-    Ok(())
+    Ok(started.elapsed().as_secs_f64())
 }
 
 fn main() -> Result<()> {
@@ -114,9 +118,7 @@ fn main() -> Result<()> {
         };
         let mut best = f64::INFINITY;
         for _ in 0..args.repeats.max(1) {
-            let started = Instant::now();
-            run(&d, config, &args, |_| {})?;
-            best = best.min(started.elapsed().as_secs_f64());
+            best = best.min(run(&d, config, &args, |_| {})?);
         }
         timed.push((multibody.as_str(), 1e6 * best / steps as f64));
     }

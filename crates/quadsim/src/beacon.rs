@@ -1,5 +1,7 @@
 //! The beacon: a coloured band on a pole, standing on the floor.
 
+use std::ops::ControlFlow;
+
 use rapier3d::geometry::{ColliderBuilder, ColliderHandle};
 use rapier3d::math::{Pose, Real, Rotation, Vector};
 use rapier3d::pipeline::PhysicsWorld;
@@ -46,16 +48,35 @@ impl BeaconConfig {
     /// meets the band: its distance `t`, exactly (a vertical cylinder's side and
     /// end discs), or `None`.
     pub fn ray_hits_band(&self, origin: [f64; 3], dir: [f64; 3]) -> Option<f64> {
+        let mut best: Option<f64> = None;
+        let _ = self.band_crossings(origin, dir, |t| {
+            if best.is_none_or(|b| t < b) {
+                best = Some(t);
+            }
+            ControlFlow::Continue(())
+        });
+        best
+    }
+
+    /// Whether the ray `origin + t dir` meets the band: whether
+    /// [`Self::ray_hits_band`] is `Some`, stopping at the first crossing found.
+    pub fn ray_meets_band(&self, origin: [f64; 3], dir: [f64; 3]) -> bool {
+        self.band_crossings(origin, dir, |_| ControlFlow::Break(()))
+            .is_break()
+    }
+
+    /// Hands `visit` each distance `t > 0` at which the ray crosses the band's
+    /// surface (the side wall's two roots, then the end discs), until it breaks.
+    fn band_crossings(
+        &self,
+        origin: [f64; 3],
+        dir: [f64; 3],
+        mut visit: impl FnMut(f64) -> ControlFlow<()>,
+    ) -> ControlFlow<()> {
         let (px, py) = (origin[0] - self.xy_m[0], origin[1] - self.xy_m[1]);
         let r2 = self.radius_m * self.radius_m;
         let z_at = |t: f64| origin[2] + t * dir[2];
         let within = |z: f64| (self.band_bottom_m()..=self.band_top_m()).contains(&z);
-        let mut best: Option<f64> = None;
-        let mut keep = |t: f64| {
-            if t > 0.0 && best.is_none_or(|b| t < b) {
-                best = Some(t);
-            }
-        };
         // Side wall: |p + t d|^2 = R^2 in the horizontal plane.
         let a = dir[0] * dir[0] + dir[1] * dir[1];
         if a > 0.0 {
@@ -65,8 +86,8 @@ impl BeaconConfig {
             if disc >= 0.0 {
                 let sq = disc.sqrt();
                 for t in [(-b - sq) / (2.0 * a), (-b + sq) / (2.0 * a)] {
-                    if within(z_at(t)) {
-                        keep(t);
+                    if within(z_at(t)) && t > 0.0 {
+                        visit(t)?;
                     }
                 }
             }
@@ -76,12 +97,12 @@ impl BeaconConfig {
             for z in [self.band_bottom_m(), self.band_top_m()] {
                 let t = (z - origin[2]) / dir[2];
                 let (x, y) = (px + t * dir[0], py + t * dir[1]);
-                if x * x + y * y <= r2 {
-                    keep(t);
+                if x * x + y * y <= r2 && t > 0.0 {
+                    visit(t)?;
                 }
             }
         }
-        best
+        ControlFlow::Continue(())
     }
 
     /// Adds the pole and the band to the world; returns the band's collider.
@@ -139,5 +160,41 @@ mod tests {
         assert!((t - 0.7).abs() < 1e-12);
         // Passing beside it.
         assert!(b.ray_hits_band([0.0, 0.2, 0.2], [1.0, 0.0, 0.0]).is_none());
+    }
+
+    #[test]
+    fn meeting_the_band_is_having_a_hit() {
+        use rand::{RngExt, SeedableRng};
+        let b = BeaconConfig {
+            xy_m: [1.0, 0.3],
+            ..Default::default()
+        };
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let (mut hits, mut misses) = (0, 0);
+        for _ in 0..20_000 {
+            // From around the camera's height, aimed about the band, some from
+            // above and inside its radius (the end discs), some behind.
+            let origin = [
+                rng.random_range(-0.5..1.5),
+                rng.random_range(-0.5..1.0),
+                rng.random_range(0.0..0.5),
+            ];
+            let aim = [
+                1.0 + rng.random_range(-0.08..0.08),
+                0.3 + rng.random_range(-0.08..0.08),
+                rng.random_range(0.05..0.35),
+            ];
+            let d: [f64; 3] = core::array::from_fn(|k| aim[k] - origin[k]);
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let dir = d.map(|v| v / n);
+            let hit = b.ray_hits_band(origin, dir).is_some();
+            assert_eq!(b.ray_meets_band(origin, dir), hit, "{origin:?} {dir:?}");
+            if hit {
+                hits += 1;
+            } else {
+                misses += 1;
+            }
+        }
+        assert!(hits > 1000 && misses > 1000, "{hits} hits, {misses} misses");
     }
 }

@@ -44,8 +44,9 @@ impl Default for CameraConfig {
 /// The band as the image shows it, before noise.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BandBlob {
-    /// Pixels `(col, row)` whose rays meet the band first.
-    pub pixels: Vec<(u32, u32)>,
+    /// Its pixels (those whose rays meet the band first) as runs of columns,
+    /// `(row, first, last)`: rows top to bottom, a row's runs left to right.
+    pub runs: Vec<(u32, u32, u32)>,
     /// Topmost and bottommost rows.
     pub rows: [u32; 2],
     /// Leftmost and rightmost columns.
@@ -53,18 +54,36 @@ pub struct BandBlob {
 }
 
 impl BandBlob {
+    /// The pixels `(col, row)`, row by row, each row left to right.
+    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.runs
+            .iter()
+            .flat_map(|&(row, first, last)| (first..=last).map(move |col| (col, row)))
+    }
+
+    /// How many pixels show the band.
+    pub fn pixel_count(&self) -> u64 {
+        self.runs
+            .iter()
+            .map(|&(_, a, b)| u64::from(b - a + 1))
+            .sum()
+    }
+
     /// Vertical extent, px.
     pub fn extent_px(&self) -> f64 {
         f64::from(self.rows[1] - self.rows[0] + 1)
     }
 
-    /// Mean column position (pixel centres), px.
+    /// Mean column position (pixel centres), px. The centres' sum is a
+    /// multiple of 1/2 far below 2^53, so it is exact whichever way it is
+    /// added: here twice it, `n (first + last + 1)` a run, in integers.
     pub fn mean_column(&self) -> f64 {
-        self.pixels
+        let twice: u64 = self
+            .runs
             .iter()
-            .map(|&(c, _)| f64::from(c) + 0.5)
-            .sum::<f64>()
-            / self.pixels.len() as f64
+            .map(|&(_, a, b)| u64::from(b - a + 1) * u64::from(a + b + 1))
+            .sum();
+        twice as f64 / 2.0 / self.pixel_count() as f64
     }
 }
 
@@ -158,13 +177,12 @@ pub fn find_band(
     let filter = QueryFilter::default().predicate(&outside_own);
     // The distance along the ray through pixel `(col, row)` to the band, if it
     // meets it, and the ray's direction.
-    let band_along = |col: u32, row: u32| {
+    let direction = |col: u32, row: u32| {
         let [x, y, z] = rays.ray(col, row).map(|v| v as Real);
-        let d = (camera_pose.rotation * Vector::new(x, y, z)).normalize();
-        let dir = [d.x, d.y, d.z].map(f64::from);
-        beacon.ray_hits_band(origin, dir).map(|t| (t, d))
+        (camera_pose.rotation * Vector::new(x, y, z)).normalize()
     };
-    let mut pixels = Vec::new();
+    let as_f64 = |d: Vector| [d.x, d.y, d.z].map(f64::from);
+    let mut runs: Vec<(u32, u32, u32)> = Vec::new();
     if !may_occlude {
         // Nothing can hide the band, so its pixels are those whose rays meet
         // it. The rays through one image row lie in one plane, which cuts the
@@ -173,17 +191,18 @@ pub fn find_band(
         // inside taken whole.
         let mut near = (c0, c0);
         for row in r0..=r1 {
-            let hit = |col: u32| band_along(col, row).is_some();
+            let hit = |col: u32| beacon.ray_meets_band(origin, as_f64(direction(col, row)));
             let Some((first, last)) = run_in_row(hit, c0..=c1, near) else {
                 continue;
             };
             near = (first, last);
-            pixels.extend((first..=last).map(|col| (col, row)));
+            runs.push((row, first, last));
         }
     } else {
         for row in r0..=r1 {
             for col in c0..=c1 {
-                let Some((band_t, d)) = band_along(col, row) else {
+                let d = direction(col, row);
+                let Some(band_t) = beacon.ray_hits_band(origin, as_f64(d)) else {
                     continue;
                 };
                 // Only something other than the beacon itself (its pole's top
@@ -196,26 +215,26 @@ pub fn find_band(
                     {
                         return Err(NoReading::Occluded);
                     }
-                    _ => pixels.push((col, row)),
+                    _ => match runs.last_mut() {
+                        Some((r, _, last)) if *r == row && *last + 1 == col => *last = col,
+                        _ => runs.push((row, col, col)),
+                    },
                 }
             }
         }
     }
-    if pixels.is_empty() {
+    let (Some(top), Some(bottom)) = (runs.first(), runs.last()) else {
         return Err(NoReading::OutOfView);
-    }
-    let rows = [
-        pixels.iter().map(|p| p.1).min().unwrap_or(0),
-        pixels.iter().map(|p| p.1).max().unwrap_or(0),
-    ];
+    };
+    let rows = [top.0, bottom.0];
     let cols = [
-        pixels.iter().map(|p| p.0).min().unwrap_or(0),
-        pixels.iter().map(|p| p.0).max().unwrap_or(0),
+        runs.iter().map(|r| r.1).min().unwrap_or(0),
+        runs.iter().map(|r| r.2).max().unwrap_or(0),
     ];
     if rows[0] == 0 || cols[0] == 0 || rows[1] == h - 1 || cols[1] == w - 1 {
         return Err(NoReading::CutByBorder);
     }
-    Ok(BandBlob { pixels, rows, cols })
+    Ok(BandBlob { runs, rows, cols })
 }
 
 /// The run of columns in `cols` where `hit` holds, given that they are one run
@@ -393,7 +412,7 @@ pub fn render_rgb(intrinsics: &CameraIntrinsics, blob: Option<&BandBlob>) -> Vec
         img[i..i + 3].copy_from_slice(&rgb);
     };
     if let Some(b) = blob {
-        for &(c, r) in &b.pixels {
+        for (c, r) in b.pixels() {
             put(c, r, [255, 140, 0]);
         }
         let (c0, c1) = (
@@ -402,7 +421,8 @@ pub fn render_rgb(intrinsics: &CameraIntrinsics, blob: Option<&BandBlob>) -> Vec
         );
         for row in [b.rows[0], b.rows[1]] {
             for col in c0..=c1 {
-                if !b.pixels.contains(&(col, row)) {
+                let on_band = |&(r, a, z): &(u32, u32, u32)| r == row && (a..=z).contains(&col);
+                if !b.runs.iter().any(on_band) {
                     put(col, row, [40, 220, 60]);
                 }
             }

@@ -210,7 +210,11 @@ fn an_unoccluded_blob_is_every_pixel_whose_ray_meets_the_band() {
             }
         }
         if let Ok(blob) = vision::find_band(&world, &pose, &intr, &beacon, band, &[]) {
-            assert_eq!(blob.pixels, every, "camera at {pose:?}");
+            assert_eq!(
+                blob.pixels().collect::<Vec<_>>(),
+                every,
+                "camera at {pose:?}"
+            );
             seen += 1;
         }
         compared += 1;
