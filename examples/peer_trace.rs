@@ -1,6 +1,7 @@
 //! The robot's motion for a peer simulator, and this build's own step time on
 //! it: the robot stands for 0.5 s and then walks at `--command` for the rest of
-//! `--seconds`. Every physics step's servo targets go to DIR/targets.csv, and
+//! `--seconds`, towards the beacon but starting far enough from it that it
+//! touches nothing but the floor (the peer's world has nothing else). Every physics step's servo targets go to DIR/targets.csv, and
 //! what a peer needs to build the same robot goes to DIR/peer.json: the URDF,
 //! the time step, the servo gains and torque limits, the joints in order, the
 //! start, and this build's full step (servos, walk engine and 20 Hz camera
@@ -16,7 +17,7 @@ use std::io::Write;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use anyhow::Result;
+use anyhow::{Result, bail};
 use clap::Parser;
 use quadsim::{MultibodyDynamics, QuadrupedSim, RobotDescription, RobotFile, SimConfig};
 
@@ -57,6 +58,35 @@ fn robot(name: Option<&str>) -> Result<(RobotDescription, SimConfig, String)> {
     }
 }
 
+/// How far short of the beacon's axis the torso's walk ends, at least, m.
+const SHORT_OF_THE_BEACON_M: f64 = 0.6;
+
+/// `config` with the robot starting far enough from the beacon that its walk
+/// ends short of it: the peer's world has only the floor, and a robot pushing
+/// against the beacon's pole would not be the same motion (nor the same
+/// work: an extra contact). How far the walk goes is measured by a first,
+/// untimed walk from well beyond its reach; the distance is never less than
+/// the configured one.
+fn clear_of_the_beacon(d: &RobotDescription, config: SimConfig, args: &Args) -> Result<SimConfig> {
+    let reach_m = 2.0 * args.command.abs() / 1000.0 * args.seconds;
+    let far = SimConfig {
+        start_distance_m: config.start_distance_m + reach_m + SHORT_OF_THE_BEACON_M,
+        ..config
+    };
+    let (mut first_x, mut end_x) = (None, 0.0);
+    run(d, far, args, |sim| {
+        end_x = sim.torso().position_m[0];
+        first_x.get_or_insert(end_x);
+    })?;
+    let travelled_m = (end_x - first_x.unwrap_or(end_x)).max(0.0);
+    Ok(SimConfig {
+        start_distance_m: config
+            .start_distance_m
+            .max(SHORT_OF_THE_BEACON_M + 1.2 * travelled_m),
+        ..config
+    })
+}
+
 /// Runs the motion from a fresh robot; calls `each` after every step.
 /// Returns the wall time of the steps alone, s: building the robot and its
 /// world is not timed, as the peer's model compilation is not.
@@ -83,6 +113,7 @@ fn run(
 fn main() -> Result<()> {
     let args = Args::parse();
     let (d, config, urdf_text) = robot(args.robot.as_deref())?;
+    let config = clear_of_the_beacon(&d, config, &args)?;
     std::fs::create_dir_all(&args.out)?;
     let urdf = args.out.join("robot.urdf");
     std::fs::write(&urdf, &urdf_text)?;
@@ -92,15 +123,25 @@ fn main() -> Result<()> {
     // The motion, recorded.
     let mut targets = std::io::BufWriter::new(std::fs::File::create(args.out.join("targets.csv"))?);
     let (mut contacts, mut steps, mut upright, mut end_x) = (0usize, 0usize, true, 0.0);
+    let mut off_floor = 0;
     run(&d, config, &args, |sim| {
         end_x = sim.torso().position_m[0];
         let row: Vec<String> = sim.servo_targets().iter().map(|t| t.to_string()).collect();
         let _ = writeln!(targets, "{}", row.join(","));
         contacts += sim.contact_points();
+        off_floor += sim.contact_points_off_floor();
         steps += 1;
         upright &= sim.is_upright();
     })?;
     targets.flush()?;
+    if off_floor > 0 {
+        bail!(
+            "the robot touched something besides the floor ({off_floor} contact points over the \
+             walk, starting {:.2} m from the beacon): the peer's world has only the floor, so the \
+             two would not simulate the same motion; try a shorter --seconds",
+            config.start_distance_m
+        );
+    }
 
     // The same motion, timed, with each `physics.multibody` (the robot's own first).
     let mut timed = Vec::new();
@@ -148,6 +189,7 @@ fn main() -> Result<()> {
         "friction": config.friction,
         "joints": joints,
         "start_position_m": torso.position_m,
+        "start_beacon_distance_m": config.start_distance_m,
         "start_orientation_xyzw": torso.orientation,
         "start_joints_rad": first_targets,
         "steps": steps,

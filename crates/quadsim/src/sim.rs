@@ -495,10 +495,25 @@ impl QuadrupedSim {
 
     /// The contact points the solver works with after the last step.
     pub fn contact_points(&self) -> usize {
+        self.contact_points_where(|_| true)
+    }
+
+    /// The contact points the solver works with after the last step between
+    /// two things neither of which is the floor (the robot on the beacon, say).
+    pub fn contact_points_off_floor(&self) -> usize {
+        let on_floor = |c: ColliderHandle| self.world.colliders[c].parent() == Some(self.floor);
+        self.contact_points_where(|p| !on_floor(p.collider1) && !on_floor(p.collider2))
+    }
+
+    /// The solver's contact points over the contact pairs `pick` picks.
+    fn contact_points_where(
+        &self,
+        pick: impl Fn(&rapier3d::geometry::ContactPair) -> bool,
+    ) -> usize {
         self.world
             .narrow_phase
             .contact_pairs()
-            .filter(|p| p.has_any_active_contact())
+            .filter(|p| p.has_any_active_contact() && pick(p))
             .flat_map(|p| p.solver_manifolds().iter())
             .map(|m| m.data.solver_contacts.len())
             .sum()
