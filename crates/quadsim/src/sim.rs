@@ -68,6 +68,16 @@ pub struct QuadrupedSim {
     blow_up_energy_j: f64,
     /// When the physics first blew up, s (see [`QuadrupedSim::blew_up_at_s`]).
     blew_up_at_s: Option<f64>,
+    /// Each link's [`link_weights`], taken after the first step (the mass
+    /// properties are final then, and nothing changes them after): the
+    /// blow-up check's bound reads them every step.
+    link_weights: Vec<(f32, f32)>,
+}
+
+/// A link's mass and largest principal moment of inertia, as its mass
+/// properties give them (each the reciprocal of a stored inverse).
+fn link_weights(local: &rapier3d::prelude::MassProperties) -> (f32, f32) {
+    (local.mass(), local.principal_inertia().max_element())
 }
 
 /// A physics blow-up, told from a fall: the robot's kinetic energy (every
@@ -282,6 +292,7 @@ impl QuadrupedSim {
             fresh_frame: false,
             blow_up_energy_j,
             blew_up_at_s: None,
+            link_weights: Vec::new(),
         };
         sim.set_joint_damping();
         sim.scale_limits();
@@ -444,6 +455,13 @@ impl QuadrupedSim {
             self.control();
         }
         self.world.step();
+        if self.link_weights.is_empty() {
+            self.link_weights = (self.links.iter())
+                .map(|(_, handle, _)| {
+                    link_weights(&self.world.bodies[*handle].mass_properties().local_mprops)
+                })
+                .collect();
+        }
         let rate = self.gyro();
         self.heading.integrate(rate, self.config.dt_s);
         self.steps += 1;
@@ -693,11 +711,14 @@ impl QuadrupedSim {
         // About each body's principal axes: rapier's own `kinetic_energy`
         // inverts the world inverse inertia, which is not finite for a link
         // without inertia about some axis (a sensor's frame, say).
-        self.links_energy_j(|body, local| {
+        self.links_energy_j(|_, body, local| {
             let axes = body.position().rotation * local.principal_inertia_local_frame;
             let w = axes.inverse() * body.angvel();
             let i = local.principal_inertia();
-            i.x * w.x * w.x + i.y * w.y * w.y + i.z * w.z * w.z
+            (
+                local.mass(),
+                i.x * w.x * w.x + i.y * w.y * w.y + i.z * w.z * w.z,
+            )
         })
     }
 
@@ -705,23 +726,33 @@ impl QuadrupedSim {
     /// each body's principal axes: each body's spin taken about its largest
     /// principal moment, `I w . w <= I_max |w|^2`. J.
     pub fn kinetic_energy_bound_j(&self) -> f64 {
-        self.links_energy_j(|body, local| {
-            local.principal_inertia().max_element() * body.angvel().length_squared()
+        self.links_energy_j(|k, body, local| {
+            let (mass, largest) = self
+                .link_weights
+                .get(k)
+                .copied()
+                .unwrap_or_else(|| link_weights(local));
+            (mass, largest * body.angvel().length_squared())
         })
     }
 
-    /// The links' kinetic energy, J, each link's rotational part `I w . w`
-    /// (twice its energy) given by `spin`.
+    /// The links' kinetic energy, J: `link(k, body, local)` gives link `k`'s
+    /// mass and its rotational part `I w . w` (twice its energy).
     fn links_energy_j(
         &self,
-        spin: impl Fn(&rapier3d::prelude::RigidBody, &rapier3d::prelude::MassProperties) -> f32,
+        link: impl Fn(
+            usize,
+            &rapier3d::prelude::RigidBody,
+            &rapier3d::prelude::MassProperties,
+        ) -> (f32, f32),
     ) -> f64 {
         self.links
             .iter()
-            .map(|(_, handle, _)| {
+            .enumerate()
+            .map(|(k, (_, handle, _))| {
                 let body = &self.world.bodies[*handle];
-                let local = &body.mass_properties().local_mprops;
-                0.5 * f64::from(local.mass() * body.linvel().length_squared() + spin(body, local))
+                let (mass, spin) = link(k, body, &body.mass_properties().local_mprops);
+                0.5 * f64::from(mass * body.linvel().length_squared() + spin)
             })
             .sum()
     }
