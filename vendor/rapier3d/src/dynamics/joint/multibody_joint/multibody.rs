@@ -49,6 +49,16 @@ fn concat_rb_mass_matrix(mass: Vector, inertia: Real) -> SMatrix<Real, SPATIAL_D
     result
 }
 
+/// PATCH (scasm-testbed): a subtree's inertia about a point (see
+/// `Multibody::composite_rigid_body_mass_matrix`): mass, first moment,
+/// rotational inertia.
+#[derive(Copy, Clone, Debug, Default)]
+struct Composite {
+    mass: Real,
+    moment: na::Vector3<Real>,
+    inertia: na::Matrix3<Real>,
+}
+
 /// PATCH (scasm-testbed): an LU factorisation with partial (row) pivoting of a
 /// multibody's mass matrix that keeps its storage from one step to the next.
 /// [`MassLu::factor`] is nalgebra's `LU::new`, operation for operation (the
@@ -443,6 +453,10 @@ pub struct Multibody {
     /// quadratic forms.
     #[cfg_attr(feature = "serde-serialize", serde(skip))]
     mj_workspace: Vec<[Real; 3 * DIM]>,
+    /// PATCH (scasm-testbed): workspace of the subtrees' inertias for the
+    /// composite-rigid-body assembly.
+    #[cfg_attr(feature = "serde-serialize", serde(skip))]
+    crb_workspace: Vec<Composite>,
     /// PATCH (scasm-testbed): each link's effective mass and world angular
     /// inertia, as `update_mass_matrix` last read them (the inverses of the
     /// body's inverse mass and world inverse inertia): `update_acceleration`,
@@ -491,6 +505,7 @@ impl Multibody {
             link_dofs: Vec::new(),
             link_dofs_signature: Vec::new(),
             mj_workspace: Vec::new(),
+            crb_workspace: Vec::new(),
             link_inertia: Vec::new(),
             root_is_dynamic: false,
             self_contacts_enabled,
@@ -1645,15 +1660,9 @@ impl Multibody {
     /// jacobian) and `I_k` the inertia of the subtree it moves; the others are
     /// zero.
     fn composite_rigid_body_mass_matrix(&mut self, bodies: &RigidBodySet) {
-        /// A subtree's inertia about `o`: mass, first moment, rotational inertia.
-        #[derive(Copy, Clone)]
-        struct Composite {
-            mass: Real,
-            moment: na::Vector3<Real>,
-            inertia: na::Matrix3<Real>,
-        }
         let o = vect_to_na(bodies[self.links[0].rigid_body].mprops.world_com);
-        let mut composite: Vec<Composite> = Vec::with_capacity(self.links.len());
+        let mut composite = core::mem::take(&mut self.crb_workspace);
+        composite.clear();
         for (link, (link_mass, link_inertia)) in self.links.iter().zip(&self.link_inertia) {
             let rb = &bodies[link.rigid_body];
             // The effective masses of a multibody link are isotropic (no locked axes).
@@ -1720,6 +1729,7 @@ impl Multibody {
             }
         }
         self.mj_workspace = motion;
+        self.crb_workspace = composite;
     }
 
     /// PATCH (scasm-testbed): the mass matrices without and with the

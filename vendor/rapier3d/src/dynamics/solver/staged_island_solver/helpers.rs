@@ -98,8 +98,16 @@ impl VelocitySolver {
             }
         }
 
-        self.generic_solver_vels_increment = DVector::zeros(multibody_solver_id as usize);
-        self.generic_solver_vels = DVector::zeros(multibody_solver_id as usize);
+        // PATCH (scasm-testbed): zeroed in place when the size holds (no
+        // allocation a step).
+        let n = multibody_solver_id as usize;
+        for v in [&mut self.generic_solver_vels_increment, &mut self.generic_solver_vels] {
+            if v.len() == n {
+                v.as_mut_slice().fill(0.0);
+            } else {
+                *v = DVector::zeros(n);
+            }
+        }
 
         for link in &self.multibody_roots {
             let multibody = multibodies
