@@ -25,10 +25,12 @@ robot_flag=()
 # Rounds of (this build, MuJoCo), one after the other, each side's best kept:
 # a burst of load on a shared machine then costs a round, not the ratio.
 rounds=${ROUNDS:-3}
-cargo build --quiet --release --example peer_trace
+# This build with the `speed` profile (Cargo.toml: release with fat LTO and one
+# codegen unit; the same floating-point results as release).
+cargo build --quiet --profile speed --example peer_trace
 for round in $(seq 1 "$rounds"); do
     echo "round $round of $rounds"
-    target/release/examples/peer_trace "${robot_flag[@]}" --command "$command" --out "$out"
+    target/speed/examples/peer_trace "${robot_flag[@]}" --command "$command" --out "$out"
     cp "$out/peer.json" "$out/peer-$round.json"
     "$venv/bin/python" scripts/peer/mujoco_peer.py "$out" > "$out/mujoco-$round.json"
 done
