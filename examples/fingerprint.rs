@@ -7,8 +7,9 @@
 //!
 //! (`--multibody`: `physics.multibody`, the default's if not given.)
 //!
-//! The expected lines are `tests/fixtures/fingerprint.txt` (with
-//! `--multibody tree`: `tests/fixtures/fingerprint-tree.txt`), and `.ci/run`
+//! The expected lines are `tests/fixtures/fingerprint.txt` (the default,
+//! `physics.multibody = tree`; with `--multibody rapier`:
+//! `tests/fixtures/fingerprint-rapier.txt`), and `.ci/run`
 //! fails on any difference: a change that alters the physics updates that
 //! file in the same commit and says so.
 

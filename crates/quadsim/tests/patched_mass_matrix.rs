@@ -6,7 +6,19 @@
 //! entry of 1 is 1.2e-7; the differences seen are at most 9.3e-10 of entries
 //! up to 1.6, i.e. 5.8e-10 of the largest).
 
-use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+use quadsim::{ERS7_URDF, MultibodyDynamics, QuadrupedSim, RobotDescription, SimConfig};
+
+/// The robot stepped by rapier's own dynamics, whose mass matrices upstream
+/// computes too (the tree dynamics, the default, assembles only the upper
+/// triangle of the plain one).
+fn rapier_sim() -> QuadrupedSim {
+    let d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
+    let config = SimConfig {
+        multibody: MultibodyDynamics::Rapier,
+        ..SimConfig::default()
+    };
+    QuadrupedSim::new(&d, config).expect("sim")
+}
 
 fn compare(sim: &QuadrupedSim, what: &str) {
     let mb = sim.multibody().expect("the robot is one multibody");
@@ -49,8 +61,7 @@ fn compare(sim: &QuadrupedSim, what: &str) {
 
 #[test]
 fn the_patched_mass_matrix_equals_upstreams() {
-    let d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
-    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    let mut sim = rapier_sim();
     sim.advance(0.5);
     compare(&sim, "standing");
     for (command, what) in [(300.0, "forwards"), (-300.0, "backwards"), (120.0, "slow")] {
@@ -118,8 +129,7 @@ fn compare_tree(sim: &QuadrupedSim, what: &str) {
 
 #[test]
 fn the_tree_mass_matrix_and_its_factors_equal_upstreams_up_to_rounding() {
-    let d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
-    let mut sim = QuadrupedSim::new(&d, SimConfig::default()).expect("sim");
+    let mut sim = rapier_sim();
     sim.advance(0.5);
     compare_tree(&sim, "standing");
     for (command, what) in [(300.0, "forwards"), (-300.0, "backwards"), (120.0, "slow")] {

@@ -9,9 +9,14 @@ pub const PHASES: [(f64, usize); 3] = [(0.0, 125), (300.0, 300), (-200.0, 200)];
 /// The torso's pose after every physics step of [`PHASES`]: position (m) and
 /// orientation (quaternion x, y, z, w).
 pub fn torso_track() -> Vec<[f64; 7]> {
-    use quadsim::{ERS7_URDF, QuadrupedSim, RobotDescription, SimConfig};
+    use quadsim::{ERS7_URDF, MultibodyDynamics, QuadrupedSim, RobotDescription, SimConfig};
     let description = RobotDescription::from_urdf_str(ERS7_URDF).expect("the ERS-7 parses");
-    let mut sim = QuadrupedSim::new(&description, SimConfig::default()).expect("builds");
+    // rapier's own dynamics, the one rapier3d as published has.
+    let config = SimConfig {
+        multibody: MultibodyDynamics::Rapier,
+        ..SimConfig::default()
+    };
+    let mut sim = QuadrupedSim::new(&description, config).expect("builds");
     let mut out = Vec::new();
     for (command, steps) in PHASES {
         sim.set_command(command).expect("finite");
