@@ -3,7 +3,7 @@
 # that hold"): seeds 1000-1049, never looked at while choosing a setting, a
 # default or a learner change. Writes runs/eval/{train,replay-*,benchmark}.
 #
-#   bash scripts/evaluate.sh          # about 8 min on the 2-core machine
+#   bash scripts/evaluate.sh          # about 3 min on the 2-core machine (8 min with rapier's own dynamics)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-runs/eval}
