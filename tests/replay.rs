@@ -91,11 +91,11 @@ fn every_named_learner_learns_both_models_from_a_recording() {
     // each learner is within them nine times in ten, and this one (seed 2) is
     // well within every one.
     let p90 = [
-        ("scasm-paper", 24.6, 160.3),
-        ("scasm", 17.0, 77.6),
-        ("scasm-eiv", 17.5, 66.1),
-        ("batch-ml", 9.6, 36.7),
-        ("batch-ml-lag", 7.1, 34.1),
+        ("scasm-paper", 19.7, 103.8),
+        ("scasm", 11.4, 51.1),
+        ("scasm-eiv", 12.3, 62.8),
+        ("batch-ml", 9.0, 40.8),
+        ("batch-ml-lag", 7.0, 38.4),
     ];
     assert_eq!(
         learners::names().collect::<Vec<_>>(),

@@ -39,8 +39,8 @@ fn bits(p: Option<Polynomial>) -> Vec<u64> {
         .unwrap_or_default()
 }
 
-/// README's default `train` has `scasm`'s action model at 0.45x A0's error
-/// and its sensor model at 52 mm, means over 15 trials (std 4.1 mm/s and 25
+/// README's default `train` has `scasm`'s action model at 0.34x A0's error
+/// and its sensor model at 37 mm, means over 15 trials (std 3.2 mm/s and 17
 /// mm). Six trials on development seeds, against the same claim with the
 /// margin their mean's sampling spread needs (twice the standard error, 0.13x
 /// A0 and 20 mm): a mean under 0.6x A0 and 75 mm, and at most one trial of
