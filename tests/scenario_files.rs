@@ -337,3 +337,21 @@ fn the_multibody_dynamics_is_a_setting_checked_and_written_back() {
     );
     refused("[physics]\nmultibody = 2\n", "physics.multibody");
 }
+
+#[test]
+fn the_walk_engines_command_slew_is_a_setting_checked_and_written_back() {
+    let base = Scenario::paper().expect("paper");
+    let s = Scenario::from_settings(None, None, &["walk.command_slew=750".to_string()])
+        .expect("a slower slew");
+    assert_eq!(s.sim.walk.command_slew_mm_s2, 750.0);
+    assert_eq!(base.sim.walk.command_slew_mm_s2, 1500.0, "the default");
+    assert_ne!(
+        s.reference_key(),
+        base.reference_key(),
+        "the reference depends on it"
+    );
+    reads_back(&s);
+    refused("[walk]\ncommand_slew = 0.0\n", "walk.command_slew");
+    refused("[walk]\ncommand_slew = -500.0\n", "walk.command_slew");
+    refused("[walk]\ncommand_slew = \"fast\"\n", "walk.command_slew");
+}

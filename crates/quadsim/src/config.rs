@@ -118,7 +118,7 @@ impl SimConfig {
     /// Checks every value's range.
     pub fn validate(&self) -> Result<(), SimConfigError> {
         let (b, c) = (&self.beacon, &self.camera);
-        let checks: [(&'static str, f64, bool, &'static str); 18] = [
+        let checks: [(&'static str, f64, bool, &'static str); 19] = [
             (
                 "physics.dt",
                 self.dt_s,
@@ -178,6 +178,12 @@ impl SimConfig {
                 self.start_distance_m,
                 self.start_distance_m > 0.3,
                 "> 0.3 m",
+            ),
+            (
+                "walk.command_slew",
+                self.walk.command_slew_mm_s2,
+                self.walk.command_slew_mm_s2 > 0.0,
+                "> 0 (mm/s) per s",
             ),
             ("beacon.radius", b.radius_m, b.radius_m > 0.0, "> 0 m"),
             (

@@ -61,7 +61,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 24] = [
+pub(crate) const SETTINGS: [Entry; 25] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -204,6 +204,11 @@ pub(crate) const SETTINGS: [Entry; 24] = [
         "servo.speed_scale",
         "the servos' speed, times the robot's",
         servo.speed_scale
+    ),
+    world_number!(
+        "walk.command_slew",
+        "how fast the walk engine's command in effect may follow a new command, (mm/s) per s",
+        walk.command_slew_mm_s2
     ),
     world_number!(
         "beacon.height_m",
