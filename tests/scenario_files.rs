@@ -355,3 +355,20 @@ fn the_walk_engines_command_slew_is_a_setting_checked_and_written_back() {
     refused("[walk]\ncommand_slew = -500.0\n", "walk.command_slew");
     refused("[walk]\ncommand_slew = \"fast\"\n", "walk.command_slew");
 }
+
+#[test]
+fn the_walk_engines_pitch_gain_is_a_setting_checked_and_written_back() {
+    let base = Scenario::paper().expect("paper");
+    let s = Scenario::from_settings(None, None, &["walk.pitch_gain=0.3".to_string()])
+        .expect("a pitch keeper");
+    assert_eq!(s.sim.walk.pitch_gain, 0.3);
+    assert_eq!(base.sim.walk.pitch_gain, 0.0, "the default is open loop");
+    assert_ne!(
+        s.reference_key(),
+        base.reference_key(),
+        "the reference depends on it"
+    );
+    reads_back(&s);
+    refused("[walk]\npitch_gain = -0.1\n", "walk.pitch_gain");
+    refused("[walk]\npitch_gain = 1.5\n", "walk.pitch_gain");
+}

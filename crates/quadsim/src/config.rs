@@ -118,7 +118,7 @@ impl SimConfig {
     /// Checks every value's range.
     pub fn validate(&self) -> Result<(), SimConfigError> {
         let (b, c) = (&self.beacon, &self.camera);
-        let checks: [(&'static str, f64, bool, &'static str); 19] = [
+        let checks: [(&'static str, f64, bool, &'static str); 20] = [
             (
                 "physics.dt",
                 self.dt_s,
@@ -184,6 +184,12 @@ impl SimConfig {
                 self.walk.command_slew_mm_s2,
                 self.walk.command_slew_mm_s2 > 0.0,
                 "> 0 (mm/s) per s",
+            ),
+            (
+                "walk.pitch_gain",
+                self.walk.pitch_gain,
+                (0.0..=1.0).contains(&self.walk.pitch_gain),
+                "in [0, 1]",
             ),
             ("beacon.radius", b.radius_m, b.radius_m > 0.0, "> 0 m"),
             (

@@ -645,7 +645,17 @@ impl QuadrupedSim {
     fn control(&mut self) {
         let period = self.config.servo.command_period_s;
         let steer = self.heading.steer(&self.config.heading, self.command_mm_s);
-        let targets = self.walk.update(period, self.command_mm_s, steer);
+        // The tilt sensor's pitch (nose up positive), read only if the walk
+        // takes it out.
+        let pitch = if self.config.walk.pitch_gain == 0.0 {
+            0.0
+        } else {
+            let fwd = self.world.bodies[self.torso].position().rotation * Vector::X;
+            f64::from(fwd.z.clamp(-1.0, 1.0).asin())
+        };
+        let targets = self
+            .walk
+            .update_level(period, self.command_mm_s, steer, pitch);
         let flat: Vec<Option<f64>> = targets
             .iter()
             .flat_map(|t: &Option<LegAngles>| {

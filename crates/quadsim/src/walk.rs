@@ -1,7 +1,8 @@
 //! The walk engine: turns a walk command into twelve joint targets, the way the
 //! robot's own motion module would. The command sets the gait parameters by Eq. 1;
 //! a change of command is slewed so the feet never jump; a trot clock places each
-//! foot on its locus; inverse kinematics turns feet into angles.
+//! foot on its locus; inverse kinematics turns feet into angles. By default the
+//! walk is open loop; `pitch_gain` lets it take out a share of the torso's pitch.
 
 use crate::description::LegDescription;
 use crate::error::RobotError;
@@ -17,6 +18,10 @@ pub struct WalkConfig {
     pub command_slew_mm_s2: f64,
     /// Time over which stepping ramps in from standing at the start, s.
     pub start_ramp_s: f64,
+    /// How much of the torso's pitch, as its tilt sensor reads it, the legs
+    /// take out: each foot is raised by `pitch_gain` times the pitch times
+    /// its leg's distance ahead of the torso's centre (0: open loop).
+    pub pitch_gain: f64,
 }
 
 impl Default for WalkConfig {
@@ -25,6 +30,7 @@ impl Default for WalkConfig {
             gait: GaitTable::default(),
             command_slew_mm_s2: 1500.0,
             start_ramp_s: 1.0,
+            pitch_gain: 0.0,
         }
     }
 }
@@ -33,6 +39,8 @@ impl Default for WalkConfig {
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Leg {
     geometry: LegGeometry,
+    /// The abduction joint's distance ahead of the torso's centre, m.
+    ahead_m: f64,
     side: f64,
     phase_offset: f64,
 }
@@ -72,6 +80,7 @@ impl WalkEngine {
                 let front = l.is_front();
                 Leg {
                     geometry: l.geometry(l.knee_sign()),
+                    ahead_m: l.hip_in_torso_m[0],
                     side: l.side(),
                     // fl with hr, fr with hl.
                     phase_offset: if front == (l.side() > 0.0) { 0.0 } else { 0.5 },
@@ -144,6 +153,18 @@ impl WalkEngine {
     /// left, as a difference of step lengths between the sides), and returns the
     /// joint targets for every leg, or `None` for a leg whose foot is out of reach.
     pub fn update(&mut self, dt_s: f64, command_mm_s: f64, steer_m: f64) -> Vec<Option<LegAngles>> {
+        self.update_level(dt_s, command_mm_s, steer_m, 0.0)
+    }
+
+    /// [`Self::update`] with the torso's pitch (rad, nose up positive) as the
+    /// tilt sensor reads it, which `pitch_gain` takes out.
+    pub fn update_level(
+        &mut self,
+        dt_s: f64,
+        command_mm_s: f64,
+        steer_m: f64,
+        pitch_rad: f64,
+    ) -> Vec<Option<LegAngles>> {
         let max_change = self.config.command_slew_mm_s2 * dt_s;
         self.command_mm_s += (command_mm_s - self.command_mm_s).clamp(-max_change, max_change);
         self.elapsed_s += dt_s;
@@ -160,8 +181,61 @@ impl WalkEngine {
             .map(|leg| {
                 let step = ramp * (p.step_length_m - leg.side * steer_m);
                 let phase = (self.clock.phase() + leg.phase_offset).fract();
-                ik::inverse(&leg.geometry, leg.target(foot_target(&p, step, phase)))
+                let mut target = leg.target(foot_target(&p, step, phase));
+                if self.config.pitch_gain != 0.0 {
+                    target[2] += self.config.pitch_gain * pitch_rad * leg.ahead_m;
+                }
+                ik::inverse(&leg.geometry, target)
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{ERS7_URDF, RobotDescription};
+
+    fn engine(pitch_gain: f64) -> (WalkEngine, RobotDescription) {
+        let d = RobotDescription::from_urdf_str(ERS7_URDF).expect("urdf");
+        let config = WalkConfig {
+            pitch_gain,
+            ..WalkConfig::default()
+        };
+        (WalkEngine::new(config, &d.legs), d)
+    }
+
+    #[test]
+    fn without_a_gain_the_pitch_changes_nothing() {
+        let (mut open, _) = engine(0.0);
+        let mut told = open.clone();
+        for k in 0..50 {
+            let pitch = 0.1 * f64::from(k % 7) - 0.3;
+            assert_eq!(
+                open.update(0.008, 200.0, 0.0),
+                told.update_level(0.008, 200.0, 0.0, pitch)
+            );
+        }
+    }
+
+    #[test]
+    fn a_nose_up_pitch_raises_the_front_feet_and_lowers_the_hind_ones() {
+        let (mut level, d) = engine(0.3);
+        let mut pitched = level.clone();
+        let pitch = 0.1;
+        let a = level.update_level(0.008, 200.0, 0.0, 0.0);
+        let b = pitched.update_level(0.008, 200.0, 0.0, pitch);
+        for ((leg, a), b) in d.legs.iter().zip(&a).zip(&b) {
+            let g = leg.geometry(leg.knee_sign());
+            let (a, b) = (a.expect("reached"), b.expect("reached"));
+            let raised = ik::forward(&g, &b)[2] - ik::forward(&g, &a)[2];
+            let want = 0.3 * pitch * leg.hip_in_torso_m[0];
+            assert!(
+                (raised - want).abs() < 1e-9,
+                "{}: raised by {raised} m, want {want}",
+                leg.name
+            );
+            assert_eq!(raised > 0.0, leg.is_front(), "{}", leg.name);
+        }
     }
 }

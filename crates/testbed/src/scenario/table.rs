@@ -61,7 +61,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 25] = [
+pub(crate) const SETTINGS: [Entry; 26] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -209,6 +209,11 @@ pub(crate) const SETTINGS: [Entry; 25] = [
         "walk.command_slew",
         "how fast the walk engine's command in effect may follow a new command, (mm/s) per s",
         walk.command_slew_mm_s2
+    ),
+    world_number!(
+        "walk.pitch_gain",
+        "how much of the torso's pitch the legs take out (0: the walk is open loop)",
+        walk.pitch_gain
     ),
     world_number!(
         "beacon.height_m",
