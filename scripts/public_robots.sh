@@ -15,12 +15,22 @@
 #
 #   bash scripts/public_robots.sh [OUT_DIR]      (default target/public-robots)
 #
+# PUBLIC_ROBOTS_SET="key=value ..." gives every measure_action those settings
+# (e.g. PUBLIC_ROBOTS_SET="walk.pitch_gain=0.15"), to check the robots under
+# another walk or world; its results then go to OUT_DIR/measured-set.
+#
 # The wheels (about 100 MB and 130 MB) are downloaded once into OUT_DIR and
 # reused; only the quadrupeds' folders are taken out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-target/public-robots}
-mkdir -p "$out/measured"
+sets=()
+measured=measured
+for kv in ${PUBLIC_ROBOTS_SET:-}; do
+    sets+=(--set "$kv")
+    measured=measured-set
+done
+mkdir -p "$out/$measured"
 erd=example-robot-data/robots
 pybullet="pybullet_data/a1/a1.urdf pybullet_data/aliengo/aliengo.urdf
 pybullet_data/laikago/laikago_toes_zup.urdf pybullet_data/mini_cheetah/mini_cheetah.urdf
@@ -78,8 +88,8 @@ cargo build --release --example measure_action --quiet
 # if not.
 check() {
     local r=$1 dir
-    dir="$out/measured/$(echo "${1%.urdf}" | tr / _)"
-    if ! target/release/examples/measure_action --robot "$out/$r" --out "$dir" \
+    dir="$out/$measured/$(echo "${1%.urdf}" | tr / _)"
+    if ! target/release/examples/measure_action --robot "$out/$r" --out "$dir" ${sets[@]+"${sets[@]}"} \
         > "$dir.log" 2>&1; then
         echo "REFUSED: $(grep -m1 -i error "$dir.log" || tail -1 "$dir.log")"
         return
