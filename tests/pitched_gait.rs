@@ -9,28 +9,15 @@
 //! about 55 mm/s for 12 s; with the pitch keeper at 0.3 the same commands,
 //! replayed open loop from the start, walk at the stopwatch's speeds.
 
-use std::sync::OnceLock;
-
 use quadsim::QuadrupedSim;
-use testbed::experiment;
-use testbed::reference::MeasuredModels;
-use testbed::scenario::Scenario;
 use testbed::trial::{TrialConfig, TrialRunner};
+use testbed::{experiment, metrics};
+
+mod common;
 
 const SEED: u64 = 105;
 /// The stretch after the reversal, s (the walk has 1.5 s to change over).
 const AFTER_S: (f64, f64) = (134.0, 144.0);
-
-fn setup() -> &'static (Scenario, MeasuredModels) {
-    static SETUP: OnceLock<(Scenario, MeasuredModels)> = OnceLock::new();
-    SETUP.get_or_init(|| {
-        let scenario = Scenario::paper().expect("scenario");
-        let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
-        let models =
-            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
-        (scenario, models)
-    })
-}
 
 /// Mean velocity towards the beacon over `AFTER_S`, mm/s, from the distance
 /// at each frame's end (`x[k]` at `(k + 1) * dt`).
@@ -41,7 +28,7 @@ fn mean_velocity(x_mm: &[f64], dt_s: f64) -> f64 {
 
 #[test]
 fn the_pitch_keeper_keeps_the_trot_out_of_the_pitched_slow_mode() {
-    let (scenario, models) = setup();
+    let (scenario, models) = common::paper_reference();
     let config = TrialConfig {
         duration_s: AFTER_S.1 + 1.0,
         seed: SEED,
@@ -64,13 +51,12 @@ fn the_pitch_keeper_keeps_the_trot_out_of_the_pitched_slow_mode() {
         commanded.iter().all(|&c| (185.0..=220.0).contains(&c)),
         "the case is a fast walk forwards after the reversal: {commanded:?}"
     );
-    let stopwatch = |c: f64| {
-        let a = &models.action;
-        let i = a.partition_point(|m| m.command < c).clamp(1, a.len() - 1);
-        let (lo, hi) = (&a[i - 1], &a[i]);
-        let u = (c - lo.command) / (hi.command - lo.command);
-        lo.velocity_mm_s + u * (hi.velocity_mm_s - lo.velocity_mm_s)
-    };
+    let table: Vec<(f64, f64)> = models
+        .action
+        .iter()
+        .map(|m| (m.command, m.velocity_mm_s))
+        .collect();
+    let stopwatch = |c: f64| metrics::interpolate(&table, c).expect("a measured model").0;
     let expected = commanded.iter().map(|&c| stopwatch(c)).sum::<f64>() / commanded.len() as f64;
 
     let slow = mean_velocity(&open_loop, dt_s);

@@ -2,26 +2,14 @@
 //! seed, feeds the learner nothing but command and reading events, and a trial
 //! resumed from a learner checkpoint ends exactly as one never stopped.
 
-use std::sync::OnceLock;
-
 use scasm::{CalibrationLearner, Event, EventError, Polynomial, Scasm};
 use testbed::experiment;
 use testbed::metrics;
-use testbed::reference::MeasuredModels;
 use testbed::scenario::Scenario;
 use testbed::trial::{self, TrialConfig};
 
-/// The measured reference, measured once per test run (and cached between runs).
-fn setup() -> &'static (Scenario, MeasuredModels) {
-    static SETUP: OnceLock<(Scenario, MeasuredModels)> = OnceLock::new();
-    SETUP.get_or_init(|| {
-        let scenario = Scenario::paper().expect("scenario");
-        let cache = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("reference-cache");
-        let models =
-            testbed::reference::measured_models(&scenario, Some(&cache)).expect("measured");
-        (scenario, models)
-    })
-}
+mod common;
+use common::paper_reference as setup;
 
 fn config(seed: u64, duration_s: f64) -> TrialConfig {
     TrialConfig {

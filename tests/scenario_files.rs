@@ -338,37 +338,44 @@ fn the_multibody_dynamics_is_a_setting_checked_and_written_back() {
     refused("[physics]\nmultibody = 2\n", "physics.multibody");
 }
 
-#[test]
-fn the_walk_engines_command_slew_is_a_setting_checked_and_written_back() {
+/// `key=value` is taken, read back and keyed into the reference, `field`
+/// reads it (`default` in the paper's scenario), and each of `bad` (TOML
+/// values) is refused naming the key.
+fn a_walk_setting(key: &str, value: f64, default: f64, field: fn(&Scenario) -> f64, bad: &[&str]) {
     let base = Scenario::paper().expect("paper");
-    let s = Scenario::from_settings(None, None, &["walk.command_slew=750".to_string()])
-        .expect("a slower slew");
-    assert_eq!(s.sim.walk.command_slew_mm_s2, 750.0);
-    assert_eq!(base.sim.walk.command_slew_mm_s2, 1500.0, "the default");
+    let s = Scenario::from_settings(None, None, &[format!("walk.{key}={value}")]).expect("taken");
+    assert_eq!(field(&s), value);
+    assert_eq!(field(&base), default, "the default");
     assert_ne!(
         s.reference_key(),
         base.reference_key(),
         "the reference depends on it"
     );
     reads_back(&s);
-    refused("[walk]\ncommand_slew = 0.0\n", "walk.command_slew");
-    refused("[walk]\ncommand_slew = -500.0\n", "walk.command_slew");
-    refused("[walk]\ncommand_slew = \"fast\"\n", "walk.command_slew");
+    for b in bad {
+        refused(&format!("[walk]\n{key} = {b}\n"), &format!("walk.{key}"));
+    }
+}
+
+#[test]
+fn the_walk_engines_command_slew_is_a_setting_checked_and_written_back() {
+    a_walk_setting(
+        "command_slew",
+        750.0,
+        1500.0,
+        |s| s.sim.walk.command_slew_mm_s2,
+        &["0.0", "-500.0", "\"fast\""],
+    );
 }
 
 #[test]
 fn the_walk_engines_pitch_gain_is_a_setting_checked_and_written_back() {
-    let base = Scenario::paper().expect("paper");
-    let s = Scenario::from_settings(None, None, &["walk.pitch_gain=0.3".to_string()])
-        .expect("a pitch keeper");
-    assert_eq!(s.sim.walk.pitch_gain, 0.3);
-    assert_eq!(base.sim.walk.pitch_gain, 0.0, "the default is open loop");
-    assert_ne!(
-        s.reference_key(),
-        base.reference_key(),
-        "the reference depends on it"
+    // The default is open loop.
+    a_walk_setting(
+        "pitch_gain",
+        0.3,
+        0.0,
+        |s| s.sim.walk.pitch_gain,
+        &["-0.1", "1.5"],
     );
-    reads_back(&s);
-    refused("[walk]\npitch_gain = -0.1\n", "walk.pitch_gain");
-    refused("[walk]\npitch_gain = 1.5\n", "walk.pitch_gain");
 }

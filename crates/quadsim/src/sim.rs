@@ -246,7 +246,7 @@ impl QuadrupedSim {
 
         WalkEngine::check_feasible(&config.walk, &description.legs)?;
         let mut walk = WalkEngine::new(config.walk, &description.legs);
-        let initial = walk.update(0.0, 0.0, 0.0);
+        let initial = walk.update(0.0, 0.0, 0.0, 0.0);
         let initial_angles: Vec<f64> = initial
             .iter()
             .flat_map(|a| {
@@ -653,9 +653,7 @@ impl QuadrupedSim {
             let fwd = self.world.bodies[self.torso].position().rotation * Vector::X;
             f64::from(fwd.z.clamp(-1.0, 1.0).asin())
         };
-        let targets = self
-            .walk
-            .update_level(period, self.command_mm_s, steer, pitch);
+        let targets = self.walk.update(period, self.command_mm_s, steer, pitch);
         let flat: Vec<Option<f64>> = targets
             .iter()
             .flat_map(|t: &Option<LegAngles>| {

@@ -150,15 +150,11 @@ impl WalkEngine {
     }
 
     /// Advances by `dt_s` towards `command_mm_s`, turning by `steer_m` (positive:
-    /// left, as a difference of step lengths between the sides), and returns the
-    /// joint targets for every leg, or `None` for a leg whose foot is out of reach.
-    pub fn update(&mut self, dt_s: f64, command_mm_s: f64, steer_m: f64) -> Vec<Option<LegAngles>> {
-        self.update_level(dt_s, command_mm_s, steer_m, 0.0)
-    }
-
-    /// [`Self::update`] with the torso's pitch (rad, nose up positive) as the
-    /// tilt sensor reads it, which `pitch_gain` takes out.
-    pub fn update_level(
+    /// left, as a difference of step lengths between the sides) and taking out
+    /// `pitch_gain` of the torso's pitch `pitch_rad` (nose up positive, as the
+    /// tilt sensor reads it; unread at gain 0), and returns the joint targets
+    /// for every leg, or `None` for a leg whose foot is out of reach.
+    pub fn update(
         &mut self,
         dt_s: f64,
         command_mm_s: f64,
@@ -207,13 +203,13 @@ mod tests {
 
     #[test]
     fn without_a_gain_the_pitch_changes_nothing() {
-        let (mut open, _) = engine(0.0);
-        let mut told = open.clone();
+        let (mut level, _) = engine(0.0);
+        let mut told = level.clone();
         for k in 0..50 {
             let pitch = 0.1 * f64::from(k % 7) - 0.3;
             assert_eq!(
-                open.update(0.008, 200.0, 0.0),
-                told.update_level(0.008, 200.0, 0.0, pitch)
+                level.update(0.008, 200.0, 0.0, 0.0),
+                told.update(0.008, 200.0, 0.0, pitch)
             );
         }
     }
@@ -223,8 +219,8 @@ mod tests {
         let (mut level, d) = engine(0.3);
         let mut pitched = level.clone();
         let pitch = 0.1;
-        let a = level.update_level(0.008, 200.0, 0.0, 0.0);
-        let b = pitched.update_level(0.008, 200.0, 0.0, pitch);
+        let a = level.update(0.008, 200.0, 0.0, 0.0);
+        let b = pitched.update(0.008, 200.0, 0.0, pitch);
         for ((leg, a), b) in d.legs.iter().zip(&a).zip(&b) {
             let g = leg.geometry(leg.knee_sign());
             let (a, b) = (a.expect("reached"), b.expect("reached"));
