@@ -76,7 +76,8 @@ class Learner:
     :meth:`configure`: ``self.own`` (its own settings by key) and
     ``self.shared`` (``gamma``, ``beta``, ``t_start``, ``sensor_degree``,
     ``action_degree``, ``sensor_window``, ``forward_degree``,
-    ``action_prior``, ``command_scale``)."""
+    ``action_prior``, ``action_highpass``, ``action_robust``,
+    ``command_scale``)."""
 
     name = "python-learner"
     about = ""

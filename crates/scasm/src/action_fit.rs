@@ -11,9 +11,36 @@
 //! is one pseudo-observation `b_i = 0` of weight `sigma k / scale`. A quartic
 //! fitted to the first seconds' few commands swings wildly between and beyond
 //! them; the prior keeps it near a line until the data say otherwise.
+//!
+//! Two defences against stretches where the world departs from any `A(C)`
+//! (a walk that stalls for seconds, say), beyond the paper:
+//! - **A high-pass** (`ScasmConfig::action_highpass_s`, time constant `tau > 0`):
+//!   both sides of Eq. 5 go through the same first-order high-pass,
+//!   `y - L(y)` with `L` an exponential mean of time constant `tau`. The
+//!   model `x = x(0) + sum_i b_i V_i` is linear, so the filtered data obey
+//!   `x - L(x) = sum_i b_i (V_i - L(V_i))` with no intercept (pinned at 0 by
+//!   a pseudo-observation). A distance lost in a stall, which in Eq. 5 offsets
+//!   every later point until it is forgotten, fades from the filtered data
+//!   within a few `tau`. `x(0)` is then `L(x) - sum_i b_i L(V_i)`.
+//! - **A robust weight** (`ScasmConfig::action_robust`, `c > 0`): a point
+//!   whose residual against the fit so far exceeds `c` times the fit's
+//!   residual standard deviation is weighed `c sigma / |residual|` (Huber's),
+//!   so a stretch the fit cannot explain moves it less.
+//!
+//! Neither does much alone: the high-pass keeps the stall's own points, and in
+//! Eq. 5 every point after a stall is as far off as the stall's, so a robust
+//! weight cannot tell them apart. Together, the high-passed residuals are large
+//! only during the stall and the few `tau` after it, and those are weighed down.
 
 use crate::polynomial::Polynomial;
 use crate::wls::{IncrementalWls, MAX_COLS};
+
+/// The pseudo-observation weight that pins the high-passed fit's intercept at 0.
+const PINNED_INTERCEPT: f64 = 1e6;
+
+/// Points the robust weight waits for (in forgetting-weighted residual degrees
+/// of freedom) before it trusts the fit's residual spread.
+const ROBUST_AFTER_DOF: f64 = 10.0;
 
 /// The running integrals `V_i` and the fit of locations on them.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,6 +54,24 @@ pub(crate) struct ActionFit {
     prior: f64,
     /// `V_i = integral_0^t (C / command_scale)^i ds`, `i = 0..=degree`.
     integrals: [f64; MAX_COLS],
+    /// The high-pass's time constant, s (0: none, the paper's Eq. 5).
+    #[cfg_attr(feature = "serde", serde(default))]
+    highpass_s: f64,
+    /// The robust weight's threshold in residual standard deviations (0: none).
+    #[cfg_attr(feature = "serde", serde(default))]
+    robust: f64,
+    /// The high-pass's means `L(V_i)` and, last, `L(x)`, and the time of the
+    /// last point (`None` before the first).
+    #[cfg_attr(feature = "serde", serde(default))]
+    means: [f64; MAX_COLS],
+    #[cfg_attr(feature = "serde", serde(default))]
+    mean_x: f64,
+    #[cfg_attr(feature = "serde", serde(default))]
+    last_t: Option<f64>,
+    /// The fit's solution after the last point (intercept, then the
+    /// coefficients in normalised command units).
+    #[cfg_attr(feature = "serde", serde(default))]
+    solution: Option<[f64; MAX_COLS]>,
 }
 
 impl ActionFit {
@@ -40,7 +85,21 @@ impl ActionFit {
             command_scale,
             prior,
             integrals: [0.0; MAX_COLS],
+            highpass_s: 0.0,
+            robust: 0.0,
+            means: [0.0; MAX_COLS],
+            mean_x: 0.0,
+            last_t: None,
+            solution: None,
         }
+    }
+
+    /// The same fit with the high-pass of time constant `highpass_s` and the
+    /// robust weight of threshold `robust` (each 0: none; see the module's doc).
+    pub(crate) fn robust(mut self, highpass_s: f64, robust: f64) -> Self {
+        self.highpass_s = highpass_s;
+        self.robust = robust;
+        self
     }
 
     /// Accounts for `command` held for `dt_s` seconds.
@@ -55,22 +114,75 @@ impl ActionFit {
 
     /// Adds the location estimate `x_s` at the current time.
     pub(crate) fn add(&mut self, x_s: f64) {
-        self.wls.add(&self.integrals[..=self.degree], x_s);
+        let n = self.degree + 1;
+        let (v, y) = if self.highpass_s > 0.0 {
+            // V_0 is the time.
+            let t = self.integrals[0];
+            let share = self
+                .last_t
+                .map_or(1.0, |t0| -libm::expm1(-(t - t0) / self.highpass_s));
+            self.last_t = Some(t);
+            let mut v = [0.0; MAX_COLS];
+            for ((vi, m), &x) in v
+                .iter_mut()
+                .zip(&mut self.means)
+                .zip(&self.integrals)
+                .take(n)
+            {
+                *m += share * (x - *m);
+                *vi = x - *m;
+            }
+            self.mean_x += share * (x_s - self.mean_x);
+            (v, x_s - self.mean_x)
+        } else {
+            (self.integrals, x_s)
+        };
+        let weight = self.robust_weight(&v[..n], y);
+        self.wls.add_weighted(&v[..n], y, weight);
+        self.solution = match self.ridge() {
+            Some(ridge) => self.wls.solve_with_ridge(&ridge),
+            None => self.wls.solve(),
+        };
+    }
+
+    /// The robust weight of the point `(v, y)` against the fit so far (1
+    /// without one, and until the fit's residual spread is measured).
+    fn robust_weight(&self, v: &[f64], y: f64) -> f64 {
+        let dof = self.wls.weight() - (self.degree + 2) as f64;
+        let Some(b) = self
+            .solution
+            .filter(|_| self.robust > 0.0 && dof > ROBUST_AFTER_DOF)
+        else {
+            return 1.0;
+        };
+        let predicted = b[0] + v.iter().zip(&b[1..]).map(|(vi, bi)| vi * bi).sum::<f64>();
+        let residual = libm::fabs(y - predicted);
+        let limit = self.robust * libm::sqrt(self.wls.residual_ss() / dof);
+        if residual > limit {
+            limit / residual
+        } else {
+            1.0
+        }
     }
 
     /// The prior's pseudo-observation weights, per column of the fit
     /// (intercept, `V_0..V_d`); `None` without a prior, for a line (which the
     /// prior leaves alone) and while the fit has no residual degrees of
     /// freedom to measure its noise by (the fit is then least squares').
+    /// With the high-pass, the intercept's pseudo-observation pins it at 0.
     fn ridge(&self) -> Option<[f64; MAX_COLS]> {
         let unknowns = (self.degree + 2) as f64;
         let dof = self.wls.weight() - unknowns;
+        let mut ridge = [0.0; MAX_COLS];
+        let pinned = self.highpass_s > 0.0;
+        if pinned {
+            ridge[0] = PINNED_INTERCEPT;
+        }
         if self.prior == 0.0 || self.degree < 2 || dof <= 0.0 {
-            return None;
+            return pinned.then_some(ridge);
         }
         let sigma = libm::sqrt(self.wls.residual_ss() / dof);
         let w = sigma * self.prior / self.command_scale;
-        let mut ridge = [0.0; MAX_COLS];
         for r in &mut ridge[3..=self.degree + 1] {
             *r = w;
         }
@@ -81,10 +193,7 @@ impl ActionFit {
     /// command units, and the fitted start location `x(0)`; `None` while the
     /// data do not determine them.
     pub(crate) fn model(&self) -> Option<(Polynomial, f64)> {
-        let b = match self.ridge() {
-            Some(ridge) => self.wls.solve_with_ridge(&ridge)?,
-            None => self.wls.solve()?,
-        };
+        let b = self.solution?;
         let mut coeffs = [0.0; MAX_COLS];
         let mut scale_pow = 1.0;
         for (c, &bi) in coeffs[..=self.degree]
@@ -95,7 +204,18 @@ impl ActionFit {
             scale_pow *= self.command_scale;
         }
         let model = Polynomial::new(&coeffs[..=self.degree]).filter(Polynomial::is_finite)?;
-        Some((model, b[0]))
+        let start = if self.highpass_s > 0.0 {
+            let n = self.degree + 1;
+            self.mean_x
+                - self.means[..n]
+                    .iter()
+                    .zip(&b[1..])
+                    .map(|(m, bi)| m * bi)
+                    .sum::<f64>()
+        } else {
+            b[0]
+        };
+        Some((model, start))
     }
 }
 
@@ -157,5 +277,120 @@ mod tests {
                 ls.eval(c)
             );
         }
+    }
+
+    /// The curve of [`plentiful_data_outweigh_the_prior`] walked over 150 s
+    /// of commands held 3 s each (20 Hz, forgetting 0.999 a reading, prior
+    /// 10), except that for 12 s from `stall_s` the robot stalls: it walks at
+    /// a third of `v(C)`, as a trot fallen into a slow mode does. Returns the
+    /// fit's largest error over the command range at the end.
+    fn stalled(stall_s: f64, highpass_s: f64, robust: f64) -> f64 {
+        let curve = |c: f64| 0.5 * c + 0.002 * c * c - 1e-8 * c * c * c * c;
+        let mut f = ActionFit::new(4, 0.999, 300.0, 10.0).robust(highpass_s, robust);
+        let (mut x, mut k) = (100.0, 0u32);
+        for hold in 0..50 {
+            let c = 300.0 * libm::sin(f64::from(hold) * 2.39);
+            for _ in 0..60 {
+                let t = f64::from(k) * 0.05;
+                f.integrate(c, 0.05);
+                let slow = if (stall_s..stall_s + 12.0).contains(&t) {
+                    1.0 / 3.0
+                } else {
+                    1.0
+                };
+                x += slow * curve(c) * 0.05;
+                k += 1;
+                f.add(x + 3.0 * libm::sin(f64::from(k) * 1.7));
+            }
+        }
+        let (a, _) = f.model().expect("determined");
+        (-300..=300)
+            .step_by(25)
+            .map(|c| libm::fabs(a.eval(f64::from(c)) - curve(f64::from(c))))
+            .fold(0.0, f64::max)
+    }
+
+    /// Eq. 5 bends A to explain the distance a stall lost; neither defence
+    /// alone does much (the high-pass leaves the stall's own points in, and
+    /// in Eq. 5 every later point is as far off as they are, so a robust
+    /// weight cannot tell them apart); together they do.
+    fn check_stall(stall_s: f64) {
+        let plain = stalled(stall_s, 0.0, 0.0);
+        let high_passed = stalled(stall_s, 5.0, 0.0);
+        let robust = stalled(stall_s, 0.0, 1.5);
+        let both = stalled(stall_s, 5.0, 1.5);
+        assert!(plain > 10.0, "Eq. 5 after a stall: off by {plain:.1} mm/s");
+        assert!(
+            both < 0.5 * plain.min(high_passed).min(robust),
+            "high-passed and robust {both:.1} mm/s, against Eq. 5's {plain:.1}, the \
+             high-passed {high_passed:.1} and the robust {robust:.1}"
+        );
+    }
+
+    #[test]
+    fn a_stall_mid_trial_fades_from_the_high_passed_robust_fit() {
+        check_stall(60.0);
+    }
+
+    #[test]
+    fn a_stall_near_the_end_moves_the_high_passed_robust_fit_less() {
+        check_stall(120.0);
+    }
+
+    #[test]
+    fn without_a_stall_the_high_passed_robust_fit_finds_the_curve_and_the_start() {
+        let curve = |c: f64| 0.5 * c + 0.002 * c * c - 1e-8 * c * c * c * c;
+        let commands: Vec<f64> = (0..200)
+            .map(|i| 300.0 * libm::sin(f64::from(i) * 2.39))
+            .collect();
+        let mut f = ActionFit::new(4, 1.0, 300.0, 10.0).robust(5.0, 1.5);
+        let (mut x, mut k) = (100.0, 0u32);
+        for &c in &commands {
+            for _ in 0..40 {
+                f.integrate(c, 0.05);
+                x += curve(c) * 0.05;
+                k += 1;
+                f.add(x + 3.0 * libm::sin(f64::from(k) * 1.7));
+            }
+        }
+        let (a, x0) = f.model().expect("determined");
+        for c in [-300.0, -150.0, 0.0, 150.0, 300.0] {
+            assert!((a.eval(c) - curve(c)).abs() < 3.0, "A({c}) = {}", a.eval(c));
+        }
+        assert!((x0 - 100.0).abs() < 5.0, "x(0) = {x0}");
+    }
+
+    #[test]
+    fn a_burst_of_wild_points_moves_the_robust_fit_less() {
+        // Clean data, then 2 s of readings 400 mm off (a camera fooled, say).
+        let curve = |c: f64| 0.8 * c + 20.0 + 0.001 * c * c;
+        let run = |robust: f64| {
+            let mut f = ActionFit::new(2, 0.999, 300.0, 0.0).robust(5.0, robust);
+            let (mut x, mut k) = (0.0, 0u32);
+            for hold in 0..40 {
+                let c = 300.0 * libm::sin(f64::from(hold) * 2.39);
+                for _ in 0..60 {
+                    f.integrate(c, 0.05);
+                    x += curve(c) * 0.05;
+                    k += 1;
+                    let wild = if (1500..1540).contains(&k) {
+                        400.0
+                    } else {
+                        0.0
+                    };
+                    f.add(x + wild + 3.0 * libm::sin(f64::from(k) * 1.7));
+                }
+            }
+            let (a, _) = f.model().expect("determined");
+            (-300..=300)
+                .step_by(50)
+                .map(|c| libm::fabs(a.eval(f64::from(c)) - curve(f64::from(c))))
+                .fold(0.0, f64::max)
+        };
+        let (plain, robust) = (run(0.0), run(1.5));
+        assert!(
+            robust < 0.5 * plain,
+            "robust {robust:.2} against least squares' {plain:.2} mm/s"
+        );
     }
 }

@@ -57,6 +57,15 @@ pub struct ScasmConfig {
     /// line; as data come, they outweigh it. Finite and at least 0; 0 is no
     /// prior (the paper's).
     pub action_prior: f64,
+    /// Time constant, s, of the high-pass both sides of the action fit go
+    /// through, so that a distance lost in a stall fades from it (0: none,
+    /// the paper's Eq. 5; see `action_fit`'s doc).
+    #[cfg_attr(feature = "serde", serde(rename = "action_highpass"))]
+    pub action_highpass_s: f64,
+    /// The action fit's robust weight: a point whose residual is beyond this
+    /// many residual standard deviations is weighed down (Huber's; 0: least
+    /// squares, the paper's).
+    pub action_robust: f64,
 }
 
 /// How the sensor model is fitted to `(reading, x_a)` pairs.
@@ -81,17 +90,19 @@ pub enum SensorFit {
 pub const MAX_SENSOR_WINDOW: usize = 100;
 
 impl Default for ScasmConfig {
-    /// The paper's values (gamma 0.999, degrees 3 and 4) but for four of
+    /// The paper's values (gamma 0.999, degrees 3 and 4) but for six of
     /// ours, chosen on the testbed's development seeds: readings averaged in
     /// fives for the sensor fit (a quarter of a second at 20 Hz; the paper has
-    /// 1), a weaker pull (beta 0.02; the paper's is 1/30), a longer start
-    /// (t_start 30 s; the paper's is 20 s) and a prior that A is nearly linear
-    /// (action_prior 10; the paper has none). [`ScasmConfig::paper`] is the
-    /// paper's exactly.
+    /// 1), a weaker pull (beta 0.01; the paper's is 1/30), a longer start
+    /// (t_start 30 s; the paper's is 20 s), a prior that A is nearly linear
+    /// (action_prior 10; the paper has none), and an action fit that a stall
+    /// moves less (a high-pass of 5 s and a robust weight beyond 1.5
+    /// standard deviations; the paper's is least squares on Eq. 5).
+    /// [`ScasmConfig::paper`] is the paper's exactly.
     fn default() -> Self {
         Self {
             gamma: 0.999,
-            beta: 0.02,
+            beta: 0.01,
             t_start_s: 30.0,
             sensor_degree: 3,
             action_degree: 4,
@@ -100,6 +111,8 @@ impl Default for ScasmConfig {
             sensor_fit: SensorFit::Inverse,
             forward_degree: 5,
             action_prior: 10.0,
+            action_highpass_s: 5.0,
+            action_robust: 1.5,
         }
     }
 }
@@ -120,6 +133,7 @@ impl ScasmConfig {
             gamma: libm::pow(self.gamma, 1.0 / factor),
             beta: 1.0 - libm::pow(1.0 - self.beta, 1.0 / factor),
             t_start_s: self.t_start_s * factor,
+            action_highpass_s: self.action_highpass_s * factor,
             ..self
         }
     }
@@ -177,6 +191,16 @@ impl ScasmConfig {
                 action_prior: self.action_prior,
             });
         }
+        if !(self.action_highpass_s.is_finite() && self.action_highpass_s >= 0.0) {
+            return Err(ConfigError::ActionHighpass {
+                action_highpass_s: self.action_highpass_s,
+            });
+        }
+        if !(self.action_robust.is_finite() && self.action_robust >= 0.0) {
+            return Err(ConfigError::ActionRobust {
+                action_robust: self.action_robust,
+            });
+        }
         Ok(ScasmParams(self))
     }
 
@@ -190,6 +214,8 @@ impl ScasmConfig {
             t_start_s: 20.0,
             sensor_window: 1,
             action_prior: 0.0,
+            action_highpass_s: 0.0,
+            action_robust: 0.0,
             ..Self::default()
         }
     }
@@ -197,8 +223,8 @@ impl ScasmConfig {
 
 /// Checked hyper-parameters: every value is in range. The default is
 /// [`ScasmConfig::default`]: the paper's constants but for a reading window of
-/// 5, beta 0.02, t_start 30 s and a prior on A (the paper's are
-/// [`ScasmConfig::paper`]).
+/// 5, beta 0.01, t_start 30 s, a prior on A and a high-passed, robust action
+/// fit (the paper's are [`ScasmConfig::paper`]).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(
     feature = "serde",
@@ -257,6 +283,15 @@ impl ScasmParams {
     pub fn action_prior(&self) -> f64 {
         self.0.action_prior
     }
+    /// Time constant of the action fit's high-pass, s (0: none).
+    pub fn action_highpass_s(&self) -> f64 {
+        self.0.action_highpass_s
+    }
+    /// Threshold of the action fit's robust weight, in residual standard
+    /// deviations (0: none).
+    pub fn action_robust(&self) -> f64 {
+        self.0.action_robust
+    }
 
     /// See [`ScasmConfig::command_scale`].
     pub fn command_scale(&self) -> f64 {
@@ -281,10 +316,35 @@ mod tests {
         assert!((slow.gamma * slow.gamma - base.gamma).abs() < 1e-15);
         assert!(((1.0 - slow.beta) * (1.0 - slow.beta) - (1.0 - base.beta)).abs() < 1e-15);
         assert_eq!(slow.t_start_s, 2.0 * base.t_start_s);
+        assert_eq!(slow.action_highpass_s, 2.0 * base.action_highpass_s);
         assert_eq!(
             (slow.sensor_degree, slow.command_scale),
             (base.sensor_degree, base.command_scale)
         );
         assert!(slow.validate().is_ok());
+    }
+
+    #[test]
+    fn the_action_fits_defences_refuse_what_is_not_a_time_or_a_threshold() {
+        for bad in [-1.0, f64::NAN, f64::INFINITY] {
+            let highpass = ScasmConfig {
+                action_highpass_s: bad,
+                ..Default::default()
+            };
+            assert!(
+                matches!(highpass.validate(), Err(ConfigError::ActionHighpass { .. })),
+                "action_highpass {bad}"
+            );
+            let robust = ScasmConfig {
+                action_robust: bad,
+                ..Default::default()
+            };
+            assert!(
+                matches!(robust.validate(), Err(ConfigError::ActionRobust { .. })),
+                "action_robust {bad}"
+            );
+        }
+        let paper = ScasmConfig::paper();
+        assert_eq!((paper.action_highpass_s, paper.action_robust), (0.0, 0.0));
     }
 }

@@ -205,7 +205,7 @@ const MAX_DEGREE: f64 = crate::MAX_REGRESSORS as f64;
 
 /// The settings several learners share, as `learner.<key>`: SCASM's
 /// hyper-parameters, which the batch learner's online start reads too.
-pub const SHARED: [SharedSetting; 8] = [
+pub const SHARED: [SharedSetting; 10] = [
     SharedSetting {
         key: "gamma",
         kind: Kind::Number,
@@ -270,6 +270,24 @@ pub const SHARED: [SharedSetting; 8] = [
               (commands / command_scale) ~ N(0, (command_scale / k)^2); 0: none (the paper's)",
         get: |c| c.action_prior,
         set: |c, v| c.action_prior = v,
+    },
+    SharedSetting {
+        key: "action_highpass",
+        kind: Kind::Number,
+        range: (0.0, false, f64::INFINITY),
+        doc: "time constant, s, of the high-pass both sides of the action fit go through, so a \
+              distance lost in a stall fades from it; 0: none (the paper's Eq. 5)",
+        get: |c| c.action_highpass_s,
+        set: |c, v| c.action_highpass_s = v,
+    },
+    SharedSetting {
+        key: "action_robust",
+        kind: Kind::Number,
+        range: (0.0, false, f64::INFINITY),
+        doc: "a point of the action fit whose residual is beyond this many residual standard \
+              deviations is weighed down (Huber's); 0: least squares (the paper's)",
+        get: |c| c.action_robust,
+        set: |c, v| c.action_robust = v,
     },
 ];
 

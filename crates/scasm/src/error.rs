@@ -44,6 +44,22 @@ pub enum ConfigError {
         /// The value given.
         action_prior: f64,
     },
+    /// The action fit's high-pass time constant is negative or not finite.
+    #[error(
+        "learner.action_highpass must be finite and at least 0 s (0: no high-pass), got {action_highpass_s}"
+    )]
+    ActionHighpass {
+        /// The value given.
+        action_highpass_s: f64,
+    },
+    /// The action fit's robust threshold is negative or not finite.
+    #[error(
+        "learner.action_robust must be finite and at least 0 (0: least squares), got {action_robust}"
+    )]
+    ActionRobust {
+        /// The value given.
+        action_robust: f64,
+    },
     /// The sensor fit's reading window is out of range.
     #[error("learner.sensor_window must be in 1..={max}, got {window}")]
     SensorWindow {

@@ -151,7 +151,8 @@ impl Scasm {
                 params.gamma(),
                 params.command_scale(),
                 params.action_prior(),
-            ),
+            )
+            .robust(params.action_highpass_s(), params.action_robust()),
             sensor_model: None,
             action_model: None,
             action_start: None,
@@ -373,7 +374,10 @@ impl CalibrationLearner for Scasm {
     /// fit), `scasm-paper` (every reading its own point, A by least squares)
     /// or `scasm`.
     fn name(&self) -> &str {
-        let paper = self.params.sensor_window() == 1 && self.params.action_prior() == 0.0;
+        let paper = self.params.sensor_window() == 1
+            && self.params.action_prior() == 0.0
+            && self.params.action_highpass_s() == 0.0
+            && self.params.action_robust() == 0.0;
         match (self.params.sensor_fit(), paper) {
             (SensorFit::Corrected, _) => "scasm-eiv",
             (SensorFit::Inverse, true) => "scasm-paper",
@@ -489,6 +493,8 @@ pub mod declarations {
                 ScasmConfig {
                     sensor_window: 1,
                     action_prior: 0.0,
+                    action_highpass_s: 0.0,
+                    action_robust: 0.0,
                     ..c.shared
                 },
                 c.mode,
@@ -510,6 +516,8 @@ pub mod declarations {
             "action_degree",
             "sensor_window",
             "action_prior",
+            "action_highpass",
+            "action_robust",
         ],
         settings: checked_settings,
         one_sided: true,

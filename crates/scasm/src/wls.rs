@@ -63,12 +63,23 @@ impl IncrementalWls {
 
     /// Adds the point `(v, y)`; `v` has exactly `regressors` entries.
     pub(crate) fn add(&mut self, v: &[f64], y: f64) {
+        self.add_weighted(v, y, 1.0);
+    }
+
+    /// Adds the point `(v, y)` with weight `w` (`add` is weight 1).
+    pub(crate) fn add_weighted(&mut self, v: &[f64], y: f64, w: f64) {
         debug_assert_eq!(v.len(), self.regressors);
         let m = self.cols();
         let mut row = [0.0; MAX_COLS];
         row[0] = 1.0;
         row[1..=self.regressors].copy_from_slice(v);
         row[m - 1] = y;
+        if w != 1.0 {
+            let sw = libm::sqrt(w);
+            for r in &mut row[..m] {
+                *r *= sw;
+            }
+        }
 
         if self.sqrt_gamma != 1.0 {
             for (i, r_row) in self.r.iter_mut().enumerate().take(m) {

@@ -31,6 +31,9 @@ fn learner() -> Scasm {
         action_degree: 1,
         command_scale: 1.0,
         sensor_window: 1,
+        // The paper's Eq. 5: least squares on the location itself.
+        action_highpass_s: 0.0,
+        action_robust: 0.0,
         ..Default::default()
     }
     .validate()

@@ -99,6 +99,8 @@ const BATCH_SHARED: &[&str] = &[
     "sensor_window",
     "forward_degree",
     "action_prior",
+    "action_highpass",
+    "action_robust",
 ];
 
 /// The batch learner as a host declares it (see [`crate::declaration`]): its
