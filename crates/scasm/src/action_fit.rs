@@ -223,21 +223,57 @@ impl ActionFit {
 mod tests {
     use super::*;
 
-    /// A fit fed `x(t) = x0 + integral of v(C)` (plus a small deterministic
-    /// wobble, so that the fit has residual noise to weigh its prior by) over
-    /// `commands`, each held for 2 s, sampled at 20 Hz.
-    fn fit(prior: f64, commands: &[f64], v: impl Fn(f64) -> f64) -> ActionFit {
-        let mut f = ActionFit::new(4, 1.0, 300.0, prior);
+    /// `f` fed a walk over `commands`, each held for `per_command` readings at
+    /// 20 Hz: the location from `x(0) = 100` at velocity `v(t, C)` (`t` the
+    /// frame's start), read with a small deterministic wobble (so that the fit
+    /// has residual noise to weigh its prior by) and `off(k)` added at reading
+    /// `k` (from 1).
+    fn feed(
+        mut f: ActionFit,
+        commands: &[f64],
+        per_command: u32,
+        v: impl Fn(f64, f64) -> f64,
+        off: impl Fn(u32) -> f64,
+    ) -> ActionFit {
         let (mut x, mut k) = (100.0, 0u32);
         for &c in commands {
-            for _ in 0..40 {
+            for _ in 0..per_command {
+                let t = f64::from(k) * 0.05;
                 f.integrate(c, 0.05);
-                x += v(c) * 0.05;
+                x += v(t, c) * 0.05;
                 k += 1;
-                f.add(x + 3.0 * libm::sin(f64::from(k) * 1.7));
+                f.add(x + off(k) + 3.0 * libm::sin(f64::from(k) * 1.7));
             }
         }
         f
+    }
+
+    /// Commands held in turn, spread over the range without a pattern.
+    fn spread(n: u32) -> Vec<f64> {
+        (0..n)
+            .map(|i| 300.0 * libm::sin(f64::from(i) * 2.39))
+            .collect()
+    }
+
+    /// The largest error of `f`'s A against `curve` over the commands from
+    /// -300 to 300 in steps of `step`.
+    fn worst(f: &ActionFit, curve: impl Fn(f64) -> f64, step: usize) -> f64 {
+        let (a, _) = f.model().expect("determined");
+        (-300..=300)
+            .step_by(step)
+            .map(|c| libm::fabs(a.eval(f64::from(c)) - curve(f64::from(c))))
+            .fold(0.0, f64::max)
+    }
+
+    /// A fit of degree 4 with no forgetting over `commands`, each held for 2 s.
+    fn fit(prior: f64, commands: &[f64], v: impl Fn(f64) -> f64) -> ActionFit {
+        feed(
+            ActionFit::new(4, 1.0, 300.0, prior),
+            commands,
+            40,
+            |_, c| v(c),
+            |_| 0.0,
+        )
     }
 
     #[test]
@@ -263,9 +299,7 @@ mod tests {
         // A curved response seen at many commands: the prior (a line) is
         // outweighed, and the fit follows the curve.
         let curve = |c: f64| 0.5 * c + 0.002 * c * c - 1e-8 * c * c * c * c;
-        let commands: Vec<f64> = (0..200)
-            .map(|i| 300.0 * libm::sin(f64::from(i) * 2.39))
-            .collect();
+        let commands = spread(200);
         let (a, _) = fit(10.0, &commands, curve).model().expect("determined");
         let (ls, _) = fit(0.0, &commands, curve).model().expect("determined");
         for c in [-300.0, -150.0, 0.0, 150.0, 300.0] {
@@ -286,28 +320,15 @@ mod tests {
     /// fit's largest error over the command range at the end.
     fn stalled(stall_s: f64, highpass_s: f64, robust: f64) -> f64 {
         let curve = |c: f64| 0.5 * c + 0.002 * c * c - 1e-8 * c * c * c * c;
-        let mut f = ActionFit::new(4, 0.999, 300.0, 10.0).robust(highpass_s, robust);
-        let (mut x, mut k) = (100.0, 0u32);
-        for hold in 0..50 {
-            let c = 300.0 * libm::sin(f64::from(hold) * 2.39);
-            for _ in 0..60 {
-                let t = f64::from(k) * 0.05;
-                f.integrate(c, 0.05);
-                let slow = if (stall_s..stall_s + 12.0).contains(&t) {
-                    1.0 / 3.0
-                } else {
-                    1.0
-                };
-                x += slow * curve(c) * 0.05;
-                k += 1;
-                f.add(x + 3.0 * libm::sin(f64::from(k) * 1.7));
-            }
-        }
-        let (a, _) = f.model().expect("determined");
-        (-300..=300)
-            .step_by(25)
-            .map(|c| libm::fabs(a.eval(f64::from(c)) - curve(f64::from(c))))
-            .fold(0.0, f64::max)
+        let stalls = |t: f64| (stall_s..stall_s + 12.0).contains(&t);
+        let f = feed(
+            ActionFit::new(4, 0.999, 300.0, 10.0).robust(highpass_s, robust),
+            &spread(50),
+            60,
+            |t, c| if stalls(t) { curve(c) / 3.0 } else { curve(c) },
+            |_| 0.0,
+        );
+        worst(&f, curve, 25)
     }
 
     /// Eq. 5 bends A to explain the distance a stall lost; neither defence
@@ -340,19 +361,13 @@ mod tests {
     #[test]
     fn without_a_stall_the_high_passed_robust_fit_finds_the_curve_and_the_start() {
         let curve = |c: f64| 0.5 * c + 0.002 * c * c - 1e-8 * c * c * c * c;
-        let commands: Vec<f64> = (0..200)
-            .map(|i| 300.0 * libm::sin(f64::from(i) * 2.39))
-            .collect();
-        let mut f = ActionFit::new(4, 1.0, 300.0, 10.0).robust(5.0, 1.5);
-        let (mut x, mut k) = (100.0, 0u32);
-        for &c in &commands {
-            for _ in 0..40 {
-                f.integrate(c, 0.05);
-                x += curve(c) * 0.05;
-                k += 1;
-                f.add(x + 3.0 * libm::sin(f64::from(k) * 1.7));
-            }
-        }
+        let f = feed(
+            ActionFit::new(4, 1.0, 300.0, 10.0).robust(5.0, 1.5),
+            &spread(200),
+            40,
+            |_, c| curve(c),
+            |_| 0.0,
+        );
         let (a, x0) = f.model().expect("determined");
         for c in [-300.0, -150.0, 0.0, 150.0, 300.0] {
             assert!((a.eval(c) - curve(c)).abs() < 3.0, "A({c}) = {}", a.eval(c));
@@ -365,27 +380,20 @@ mod tests {
         // Clean data, then 2 s of readings 400 mm off (a camera fooled, say).
         let curve = |c: f64| 0.8 * c + 20.0 + 0.001 * c * c;
         let run = |robust: f64| {
-            let mut f = ActionFit::new(2, 0.999, 300.0, 0.0).robust(5.0, robust);
-            let (mut x, mut k) = (0.0, 0u32);
-            for hold in 0..40 {
-                let c = 300.0 * libm::sin(f64::from(hold) * 2.39);
-                for _ in 0..60 {
-                    f.integrate(c, 0.05);
-                    x += curve(c) * 0.05;
-                    k += 1;
-                    let wild = if (1500..1540).contains(&k) {
+            let f = feed(
+                ActionFit::new(2, 0.999, 300.0, 0.0).robust(5.0, robust),
+                &spread(40),
+                60,
+                |_, c| curve(c),
+                |k| {
+                    if (1500..1540).contains(&k) {
                         400.0
                     } else {
                         0.0
-                    };
-                    f.add(x + wild + 3.0 * libm::sin(f64::from(k) * 1.7));
-                }
-            }
-            let (a, _) = f.model().expect("determined");
-            (-300..=300)
-                .step_by(50)
-                .map(|c| libm::fabs(a.eval(f64::from(c)) - curve(f64::from(c))))
-                .fold(0.0, f64::max)
+                    }
+                },
+            );
+            worst(&f, curve, 50)
         };
         let (plain, robust) = (run(0.0), run(1.5));
         assert!(
