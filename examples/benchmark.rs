@@ -56,7 +56,7 @@ struct Args {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     if args.learners.iter().any(|l| l == "list") {
         scasm_testbed::list_learners_if_asked(Some("list"));
         return Ok(());

@@ -25,7 +25,7 @@ struct Args {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     let description = RobotDescription::from_urdf_str(ERS7_URDF)?;
     let mut config = SimConfig::default();
     if let Some(multibody) = args.multibody {

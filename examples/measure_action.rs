@@ -22,7 +22,7 @@ struct Args {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     let scenario = args.scenario.scenario()?;
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();

@@ -54,7 +54,7 @@ fn save_frame(
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     ensure!(args.readings > 0, "--readings must be at least 1");
     let scenario = args.scenario.scenario()?;
     let (description, config) = (&scenario.description, scenario.sim);

@@ -111,7 +111,7 @@ fn run(
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     let (d, config, urdf_text) = robot(args.robot.as_deref())?;
     let config = clear_of_the_beacon(&d, config, &args)?;
     std::fs::create_dir_all(&args.out)?;

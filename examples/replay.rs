@@ -38,6 +38,11 @@ struct Args {
     /// Results directory (default: runs/replay-<unix time>).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Print the whole results table (about 230 columns), the measured
+    /// models and the localisation table, as index.html and summary.json
+    /// hold them; by default a headline that fits 100 columns.
+    #[arg(long)]
+    wide: bool,
     #[command(flatten)]
     rerun: scasm_testbed::RerunArgs,
 }
@@ -65,7 +70,7 @@ fn scenario_of(dataset: &Dataset, args: &Args) -> Result<Scenario> {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     if scasm_testbed::list_learners_if_asked(args.learner.as_deref()) {
         return Ok(());
     }
@@ -122,7 +127,10 @@ fn main() -> Result<()> {
     );
     output::write_json(&out.join("summary.json"), &run.json)?;
     let (rows, aggregate) = (&run.rows, &run.aggregate);
-    print!("{}", report::run::console(&run, models, &scenarios[0]));
+    print!(
+        "{}",
+        report::run::console(&run, models, &scenarios[0], args.wide)
+    );
     let trials: Vec<scasm_testbed::RunTrial> = datasets
         .iter()
         .zip(&scenarios)
@@ -140,7 +148,7 @@ fn main() -> Result<()> {
         .collect();
     args.rerun.write(&trials)?;
     println!(
-        "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads; results in {}",
+        "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads\nresults in {}",
         rows.len(),
         datasets
             .iter()

@@ -88,7 +88,7 @@ fn write_outputs(results: &Results, dir: &Path) -> Result<()> {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     if scasm_testbed::list_learners_if_asked(args.learner.as_deref()) {
         return Ok(());
     }

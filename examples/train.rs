@@ -34,12 +34,17 @@ struct Args {
     cache: PathBuf,
     #[command(flatten)]
     scenario: ScenarioArgs,
+    /// Print the whole results table (about 230 columns), the measured
+    /// models and the localisation table, as index.html and summary.json
+    /// hold them; by default a headline that fits 100 columns.
+    #[arg(long)]
+    wide: bool,
     #[command(flatten)]
     rerun: RerunArgs,
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref())
         || scasm_testbed::list_settings_if_asked(&args.scenario.set)
     {
@@ -107,7 +112,10 @@ fn main() -> Result<()> {
         "no trial finished ok: {}",
         aggregate.describe()
     );
-    print!("{}", report::run::console(&run, &models, &scenario));
+    print!(
+        "{}",
+        report::run::console(&run, &models, &scenario, args.wide)
+    );
 
     let trials: Vec<RunTrial> = results
         .iter()
@@ -139,10 +147,13 @@ fn main() -> Result<()> {
     println!("  {figures} figures (PNG and SVG) and index.html written");
 
     println!(
-        "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall; results in {}",
+        "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall",
         rows.len(),
         aggregate.mean.realtime_factor,
         started.elapsed().as_secs_f64(),
+    );
+    println!(
+        "results in {0}: open {0}/index.html (every figure: summary.json, or --wide)",
         out.display()
     );
     Ok(())

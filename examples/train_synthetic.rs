@@ -46,7 +46,7 @@ fn mean_std(v: &[f64]) -> (f64, f64) {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     ensure!(args.trials > 0, "--trials must be at least 1");
     ensure!(
         args.duration > 0.0 && args.duration.is_finite(),

@@ -40,7 +40,7 @@ struct Args {
 }
 
 fn main() -> Result<()> {
-    let args = Args::parse();
+    let args: Args = scasm_testbed::args::parse();
     anyhow::ensure!(
         args.speed.is_finite() && args.speed >= 0.0,
         "--speed must be 0 (as fast as it runs) or positive"

@@ -2,6 +2,8 @@
 //! and a run's trials, `--learner list`, and run directories.
 #![warn(missing_docs)]
 
+pub mod args;
+
 use std::path::{Path, PathBuf};
 
 use testbed::reference::MeasuredModels;

@@ -2,7 +2,7 @@
 
 A learner is a class with ``handle(event)`` and four queries (``action_model``,
 ``sensor_model``, ``x_a``, ``x_s``); :func:`run` speaks the testbed's learner
-protocol (``docs/learner-protocol.md``, version 1) for it on stdin and stdout::
+protocol (``book/src/learner/protocol.md``, version 1) for it on stdin and stdout::
 
     from scasm_testbed import Learner, Setting, run
 
@@ -27,6 +27,9 @@ import math
 import sys
 import traceback
 from dataclasses import dataclass
+
+__version__ = "0.2.0"
+"""The package's version: the testbed's, which it ships with."""
 
 PROTOCOL = 1
 """The protocol version this package speaks."""

@@ -15,11 +15,31 @@ use crate::page::Page;
 use crate::paper::{self, RunData};
 use crate::table;
 
-/// What the console shows of a run: the results table (judged in the world
-/// as it ends), how many trials finished ok and which did not, the measured
-/// models, the localisation table and the recovery after any change.
-pub fn console(run: &RunSummary, models: &MeasuredModels, scenario: &Scenario) -> String {
+/// What the console shows of a run. By default a headline that fits a
+/// [`table::CONSOLE_COLUMNS`]-column terminal: each figure beside the paper's
+/// and whether it is at the paper's level, and how many trials finished ok
+/// and which did not. With `wide`, the whole results table (judged in the
+/// world as it ends), the measured models, the localisation table and the
+/// recovery after any change, as `index.html` and `summary.json` hold them.
+pub fn console(
+    run: &RunSummary,
+    models: &MeasuredModels,
+    scenario: &Scenario,
+    wide: bool,
+) -> String {
     let aggregate = &run.aggregate;
+    let recovery = aggregate.describe_recovery(&scenario.changes_text());
+    if !wide {
+        let mut out = format!(
+            "\n{}\n{}",
+            table::headline(aggregate, models.last()),
+            table::wrap(&aggregate.describe(), table::CONSOLE_COLUMNS)
+        );
+        if let Some(text) = recovery {
+            out += &format!("\n{}", table::wrap(&text, table::CONSOLE_COLUMNS));
+        }
+        return out;
+    }
     let (header, rows) = table::results_table(aggregate, models.last());
     let mut out = format!(
         "\n{}\n{}\n{}\n\n{}\n",
@@ -28,7 +48,7 @@ pub fn console(run: &RunSummary, models: &MeasuredModels, scenario: &Scenario) -
         models.describe(&scenario.stopwatch()),
         aggregate.describe_localisation()
     );
-    if let Some(text) = aggregate.describe_recovery(&scenario.changes_text()) {
+    if let Some(text) = recovery {
         out += &format!("\n{text}\n");
     }
     out

@@ -98,6 +98,103 @@ pub fn results_table(
     (header, rows)
 }
 
+/// The width the console's headline keeps within, in columns.
+pub const CONSOLE_COLUMNS: usize = 100;
+
+/// A run's figures beside the paper's, narrow enough for a
+/// [`CONSOLE_COLUMNS`]-column terminal: each figure's mean (and share of the
+/// range), the paper's, whether it is at the paper's level, and the ratio to
+/// the best polynomial of the learner's degrees (the paper's beside it).
+pub fn headline(aggregate: &Aggregate, models: &MeasuredModels) -> String {
+    let mean = &aggregate.mean;
+    let paper = Figures::paper();
+    let (v, d) = (models.velocity_range_mm_s(), models.distance_range_mm());
+    let level = mean.at_paper_level(v, d);
+    let yes = |ok: bool| if ok { "yes" } else { "no" }.to_string();
+    let pct = |x: f64, range: f64| format!("{:.1} %", 100.0 * x / range);
+    let header = [
+        "figure",
+        "ours",
+        "of range",
+        "paper",
+        "of range",
+        "at paper level",
+        "/ best poly (paper)",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows = vec![
+        vec![
+            "action RMSE (mm/s)".into(),
+            format!("{:.1}", mean.action_rmse_mm_s),
+            pct(mean.action_rmse_mm_s, v),
+            format!("{:.1}", paper.action_rmse_mm_s),
+            "4.9 %".into(),
+            yes(level[0]),
+            format!(
+                "{:.2}x ({:.2}x)",
+                mean.action_rmse_mm_s / mean.action_best_rmse_mm_s,
+                paper.action_rmse_mm_s / paper.action_best_rmse_mm_s
+            ),
+        ],
+        vec![
+            "sensor RMSE (mm)".into(),
+            format!("{:.1}", mean.sensor_rmse_mm),
+            pct(mean.sensor_rmse_mm, d),
+            format!("{:.1}", paper.sensor_rmse_mm),
+            "2.9 %".into(),
+            yes(level[1]),
+            format!(
+                "{:.2}x ({:.2}x)",
+                mean.sensor_rmse_mm / mean.sensor_best_rmse_mm,
+                paper.sensor_rmse_mm / paper.sensor_best_rmse_mm
+            ),
+        ],
+        vec![
+            "consistency".into(),
+            format!("{:.3}", mean.consistency),
+            "-".into(),
+            format!("{:.2}", paper.consistency),
+            "-".into(),
+            yes(level[2]),
+            "-".into(),
+        ],
+    ];
+    let mut out = text(&header, &rows);
+    out += &wrap(
+        &format!(
+            "(means over the ok trials; the information floor, the least error the data \
+             allow: action {:.1} mm/s, sensor {:.1} mm)",
+            mean.action_crb_rmse_mm_s, mean.sensor_crb_rmse_mm
+        ),
+        CONSOLE_COLUMNS,
+    );
+    out
+}
+
+/// `text` broken at spaces into lines of at most `width` columns (a word
+/// longer than that stands on its own line).
+pub fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    for paragraph in text.lines() {
+        let mut line = String::new();
+        for word in paragraph.split_whitespace() {
+            if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+                out += &line;
+                out.push('\n');
+                line.clear();
+            }
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line += word;
+        }
+        out += &line;
+        out.push('\n');
+    }
+    out
+}
+
 /// The table as aligned text, one line per row (the first column left-aligned,
 /// the others right-aligned).
 pub fn text(header: &[String], rows: &[Vec<String>]) -> String {

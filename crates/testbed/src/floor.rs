@@ -3,7 +3,7 @@
 //! of the given model degrees could have done with these commands, these
 //! reading times and this much noise, and so how much of a learner's gap to
 //! the best polynomials is the recording's and how much is the method's.
-//! The derivation and its assumptions are in `docs/information-floor.md`.
+//! The derivation and its assumptions are in `book/src/design/information-floor.md`.
 //!
 //! The model is the one every learner here assumes: over frame `j` the
 //! location moves by `A(C_j) dt_j` plus white process noise, and each reading

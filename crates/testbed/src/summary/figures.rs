@@ -320,6 +320,19 @@ impl Figures {
         Self::FIELDS.iter().find(|f| f.name == name)
     }
 
+    /// Whether these figures are at the paper's level, each of action, sensor
+    /// and consistency: the action error at most [`PAPER_LEVEL_ACTION_PCT`] %
+    /// of `velocity_range_mm_s`, the sensor error at most
+    /// [`PAPER_LEVEL_SENSOR_PCT`] % of `distance_range_mm`, the consistency at
+    /// most [`PAPER_LEVEL_CONSISTENCY`]. A NaN figure is not.
+    pub fn at_paper_level(&self, velocity_range_mm_s: f64, distance_range_mm: f64) -> [bool; 3] {
+        [
+            100.0 * self.action_rmse_mm_s / velocity_range_mm_s <= PAPER_LEVEL_ACTION_PCT,
+            100.0 * self.sensor_rmse_mm / distance_range_mm <= PAPER_LEVEL_SENSOR_PCT,
+            self.consistency <= PAPER_LEVEL_CONSISTENCY,
+        ]
+    }
+
     /// The paper's reported figures (15 trials on a Sony Aibo ERS-7).
     pub fn paper() -> Self {
         Self {
@@ -333,6 +346,15 @@ impl Figures {
         }
     }
 }
+
+/// The paper's action error, 29.6 mm/s, as a share of its robot's velocity
+/// range (600 mm/s), %: the level a learner's action model is held to.
+pub const PAPER_LEVEL_ACTION_PCT: f64 = 4.9;
+/// The paper's sensor error, 70.4 mm, as a share of its distance range (2400
+/// mm), %.
+pub const PAPER_LEVEL_SENSOR_PCT: f64 = 2.9;
+/// The paper's consistency, 0.08.
+pub const PAPER_LEVEL_CONSISTENCY: f64 = 0.08;
 
 #[cfg(test)]
 mod tests {

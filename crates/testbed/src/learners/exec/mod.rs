@@ -1,5 +1,5 @@
 //! Learners as programs in any language, over the line protocol of
-//! `docs/learner-protocol.md`: its messages, the child process, and the
+//! `book/src/learner/protocol.md`: its messages, the child process, and the
 //! learner that drives one.
 
 pub mod child;

@@ -1,4 +1,4 @@
-//! The learner protocol's messages (`docs/learner-protocol.md`), one JSON
+//! The learner protocol's messages (`book/src/learner/protocol.md`), one JSON
 //! object per line, and the checks on what a learner says: no I/O here.
 
 use scasm::declaration::{Kind, Setting};

@@ -1,0 +1,211 @@
+#!/usr/bin/env python3
+"""Run every command and code block the book and the README show.
+
+Usage: python3 scripts/doc_check.py [FILE.md ...]   (default: README.md and book/src/**/*.md)
+
+Every fenced block whose language can be run is run, or skipped with a stated reason:
+
+- ``sh``: each command (a line, with ``\\`` continuations) runs in bash from the repository's
+  root, in order, so that a page's commands may build on each other. Commands run as written,
+  but for two cuts: a command that runs trials (``train``, ``benchmark``, ``sweep``, ``view``)
+  gets ``--set trial.duration=<DOC_CHECK_DURATION>`` (default 30 s) appended, and ``cargo
+  bench`` gets ``-- --test`` (each benchmark run once, as a test);
+- ``python``, ``js``/``javascript``, ``c`` after ``<!-- check: learner -->``: the block (or the
+  file it ``{{#include}}``s) is a learner program; it runs a short ``train`` trial, which must
+  end ok (``trials_ok`` 1 in its summary.json);
+- ``toml`` after ``<!-- check: scenario -->``: a scenario file; a one-trial ``train`` reads it;
+- ``rust``: compiled and run by ``mdbook test`` (not here);
+- any block after ``<!-- check: skip REASON -->`` is skipped, and the reason printed.
+
+A runnable block with neither a check nor a reason is an error: nothing is left unchecked
+silently. A failing block is reported with its file and line. Exits 1 if any block failed.
+"""
+
+import json
+import os
+import re
+import shlex
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DURATION = os.environ.get("DOC_CHECK_DURATION", "30")
+RUNNABLE = {"sh", "bash", "python", "js", "javascript", "c", "toml", "rust"}
+TRIAL_COMMANDS = re.compile(r"(--example|examples/)\s*(train|benchmark|sweep|view)\b")
+TRAIN = ["cargo", "run", "--release", "--quiet", "--example", "train", "--"]
+
+
+def blocks(path):
+    """(line, language, marker, text) of each fenced block of a Markdown file."""
+    lines = open(path, encoding="utf-8").read().split("\n")
+    out, i = [], 0
+    while i < len(lines):
+        m = re.match(r"^(\s*)(```+)(.*)$", lines[i])
+        if not m:
+            i += 1
+            continue
+        fence, info, start = m.group(2), m.group(3).strip(), i + 1
+        lang = re.split(r"[ ,]", info)[0] if info else ""
+        marker = ""
+        j = i - 1
+        while j >= 0 and not lines[j].strip():
+            j -= 1
+        if j >= 0:
+            mk = re.match(r"^\s*<!--\s*check:\s*(.*?)\s*-->\s*$", lines[j])
+            if mk:
+                marker = mk.group(1)
+        body = []
+        i += 1
+        while i < len(lines) and not lines[i].strip().startswith(fence):
+            body.append(lines[i])
+            i += 1
+        i += 1
+        out.append((start, lang, marker, "\n".join(body), info))
+    return out
+
+
+def include(text, md_path):
+    """A block's text with mdBook's whole-file ``{{#include path}}`` resolved."""
+
+    def read(m):
+        p = os.path.normpath(os.path.join(os.path.dirname(md_path), m.group(1).strip()))
+        return open(p, encoding="utf-8").read()
+
+    return re.sub(r"\{\{#include\s+([^}:]+)\}\}", read, text)
+
+
+def commands(text):
+    """The commands of a shell block: continuation lines joined, comments and blanks dropped."""
+    out, cur = [], ""
+    for line in text.split("\n"):
+        if line.rstrip().endswith("\\"):
+            cur += line.rstrip()[:-1] + " "
+            continue
+        cur += line
+        words = cur.strip()
+        cur = ""
+        if words and not words.startswith("#"):
+            out.append(words)
+    return out
+
+
+def cut(cmd):
+    """The command with a trial's duration cut, and benchmarks run once."""
+    # A trailing comment is not part of the command.
+    try:
+        words = shlex.split(cmd, comments=True)
+    except ValueError:
+        return cmd
+    cmd = shlex.join(words)
+    if TRIAL_COMMANDS.search(cmd):
+        extra = ["--set", f"trial.duration={DURATION}"]
+        if "cargo" in words[:1] and "--" not in words:
+            extra = ["--"] + extra
+        cmd = shlex.join(words + extra)
+    elif words[:2] == ["cargo", "bench"]:
+        cmd = shlex.join(words + (["--test"] if "--" in words else ["--", "--test"]))
+    return cmd
+
+
+def run(cmd, what):
+    r = subprocess.run(["bash", "-c", cmd], cwd=ROOT, capture_output=True, text=True)
+    if r.returncode != 0:
+        tail = "\n".join((r.stdout + r.stderr).strip().split("\n")[-15:])
+        return f"{what}: `{cmd}` exited with {r.returncode}:\n{tail}"
+    return None
+
+
+def learner(path, line, lang, text, tmp):
+    ext = {"python": "py", "js": "js", "javascript": "js", "c": "c"}[lang]
+    src = os.path.join(tmp, f"learner_{line}.{ext}")
+    open(src, "w", encoding="utf-8").write(text)
+    if ext == "py":
+        prog = f"python3 {src}"
+    elif ext == "js":
+        prog = f"node {src}"
+    else:
+        exe = src[:-2]
+        err = run(f"cc -O2 -std=c99 -o {shlex.quote(exe)} {shlex.quote(src)} -lm", "compiling")
+        if err:
+            return err
+        prog = exe
+    out = os.path.join(tmp, f"run_{line}")
+    cmd = shlex.join(TRAIN + ["--learner", f"exec:{prog}", "--trials", "1", "--duration", DURATION,
+                              "--out", out])
+    err = run(cmd, "the learner's trial")
+    if err:
+        return err
+    summary = json.load(open(os.path.join(out, "summary.json")))
+    if summary.get("trials_ok") != 1:
+        return f"the learner's trial did not end ok: {summary.get('trials')}"
+    return None
+
+
+def scenario(line, text, tmp):
+    f = os.path.join(tmp, f"scenario_{line}.toml")
+    open(f, "w", encoding="utf-8").write(text)
+    out = os.path.join(tmp, f"scenario_run_{line}")
+    return run(shlex.join(TRAIN + ["--config", f, "--trials", "1", "--duration", "5", "--out", out]),
+               "the scenario")
+
+
+def main():
+    files = sys.argv[1:]
+    if not files:
+        files = [os.path.join(ROOT, "README.md")]
+        for d, _, fs in sorted(os.walk(os.path.join(ROOT, "book", "src"))):
+            files += [os.path.join(d, f) for f in sorted(fs) if f.endswith(".md")]
+    ran = skipped = by_mdbook = 0
+    failures = []
+    with tempfile.TemporaryDirectory(prefix="doc-check-") as tmp:
+        for path in files:
+            rel = os.path.relpath(path, ROOT)
+            for line, lang, marker, text, info in blocks(path):
+                where = f"{rel}:{line}"
+                if lang not in RUNNABLE:
+                    continue
+                if marker.startswith("skip"):
+                    reason = marker[4:].strip(" :")
+                    if not reason:
+                        failures.append(f"{where}: `check: skip` needs a reason")
+                    else:
+                        skipped += 1
+                        print(f"skip {where}: {reason}")
+                    continue
+                text = include(text, path)
+                if lang == "rust":
+                    by_mdbook += 1
+                    continue
+                err = None
+                if lang in ("sh", "bash") and not marker:
+                    for cmd in commands(text):
+                        c = cut(cmd)
+                        print(f"run  {where}: {c}", flush=True)
+                        err = run(c, "command")
+                        ran += 1
+                        if err:
+                            break
+                elif marker == "learner" and lang in ("python", "js", "javascript", "c"):
+                    print(f"run  {where}: a {lang} learner's trial", flush=True)
+                    err = learner(path, line, lang, text, tmp)
+                    ran += 1
+                elif marker == "scenario" and lang == "toml":
+                    print(f"run  {where}: a scenario file's trial", flush=True)
+                    err = scenario(line, text, tmp)
+                    ran += 1
+                else:
+                    err = (f"a `{info}` block with no check: mark it `<!-- check: learner -->`, "
+                           "`<!-- check: scenario -->` or `<!-- check: skip REASON -->`")
+                if err:
+                    failures.append(f"{where}: {err}")
+                    print(f"FAIL {where}", flush=True)
+    print(f"\ndoc check: {ran} commands and blocks ran, {by_mdbook} Rust blocks left to "
+          f"`mdbook test`, {skipped} skipped with a reason, {len(failures)} failed")
+    for f in failures:
+        print(f"\n{f}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
