@@ -8,7 +8,7 @@ Every fenced block whose language can be run is run, or skipped with a stated re
 - ``sh``: each command (a line, with ``\\`` continuations) runs in bash from the repository's
   root, in order, so that a page's commands may build on each other. Commands run as written,
   but for two cuts: a command that runs trials (``train``, ``benchmark``, ``sweep``, ``view``)
-  gets ``--set trial.duration=<DOC_CHECK_DURATION>`` (default 30 s) appended, and ``cargo
+  gets ``--set trial.duration=<DOC_CHECK_DURATION>`` (default 60 s) appended, and ``cargo
   bench`` gets ``-- --test`` (each benchmark run once, as a test);
 - ``python``, ``js``/``javascript``, ``c`` after ``<!-- check: learner -->``: the block (or the
   file it ``{{#include}}``s) is a learner program; it runs a short ``train`` trial, which must
@@ -30,7 +30,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DURATION = os.environ.get("DOC_CHECK_DURATION", "30")
+DURATION = os.environ.get("DOC_CHECK_DURATION", "60")
 RUNNABLE = {"sh", "bash", "python", "js", "javascript", "c", "toml", "rust"}
 TRIAL_COMMANDS = re.compile(r"(--example|examples/)\s*(train|benchmark|sweep|view)\b")
 TRAIN = ["cargo", "run", "--release", "--quiet", "--example", "train", "--"]

@@ -15,18 +15,18 @@ pub const VERSION: &str = concat!(
 /// The command line, parsed into `T`; `--version` and `--help-markdown` print
 /// and exit.
 pub fn parse<T: FromArgMatches + CommandFactory>() -> T {
+    // Before parsing: a binary with a required argument prints its flags too.
+    if std::env::args_os().skip(1).any(|a| a == "--help-markdown") {
+        print!("{}", markdown(&named(T::command())));
+        std::process::exit(0);
+    }
     let command = named(T::command()).version(VERSION).arg(
         Arg::new("help-markdown")
             .long("help-markdown")
             .action(ArgAction::SetTrue)
             .hide(true),
     );
-    let matches = command.get_matches();
-    if matches.get_flag("help-markdown") {
-        print!("{}", markdown(&named(T::command())));
-        std::process::exit(0);
-    }
-    T::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+    T::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
 }
 
 /// The command named as the binary was run (`train`, not the package's name).
@@ -109,5 +109,5 @@ fn one_line(text: &str) -> String {
 }
 
 fn cell(text: &str) -> String {
-    text.replace('|', "\\|")
+    text.replace('|', "\\|").replace('<', "&lt;").replace('>', "&gt;")
 }

@@ -115,10 +115,11 @@ impl Default for SimConfig {
 }
 
 impl SimConfig {
-    /// Checks every value's range.
-    pub fn validate(&self) -> Result<(), SimConfigError> {
+    /// Each checked value: its setting's key, the value, whether it is in
+    /// range, and the range in words (for errors and the settings reference).
+    pub fn ranges(&self) -> [(&'static str, f64, bool, &'static str); 21] {
         let (b, c) = (&self.beacon, &self.camera);
-        let checks: [(&'static str, f64, bool, &'static str); 20] = [
+        [
             (
                 "physics.dt",
                 self.dt_s,
@@ -174,7 +175,7 @@ impl SimConfig {
                 ">= physics.dt",
             ),
             (
-                "world.start_distance",
+                "world.start_distance_m",
                 self.start_distance_m,
                 self.start_distance_m > 0.3,
                 "> 0.3 m",
@@ -191,7 +192,7 @@ impl SimConfig {
                 (0.0..=1.0).contains(&self.walk.pitch_gain),
                 "in [0, 1]",
             ),
-            ("beacon.radius", b.radius_m, b.radius_m > 0.0, "> 0 m"),
+            ("beacon.radius_m", b.radius_m, b.radius_m > 0.0, "> 0 m"),
             (
                 "beacon.height_m",
                 b.band_height_m,
@@ -205,39 +206,42 @@ impl SimConfig {
                 ">= half the band's height (the band stands on the floor)",
             ),
             (
-                "camera.width",
+                "camera.width_px",
                 f64::from(c.intrinsics.width_px),
                 c.intrinsics.width_px >= 8,
                 ">= 8 px",
             ),
             (
-                "camera.height",
+                "camera.height_px",
                 f64::from(c.intrinsics.height_px),
                 c.intrinsics.height_px >= 8,
                 ">= 8 px",
             ),
             (
-                "camera.hfov",
+                "camera.hfov_deg",
                 c.intrinsics.hfov_deg,
                 c.intrinsics.hfov_deg > 0.0 && c.intrinsics.hfov_deg < 170.0,
                 "in (0, 170) degrees",
             ),
             (
-                "camera.vfov",
+                "camera.vfov_deg",
                 c.intrinsics.vfov_deg,
                 c.intrinsics.vfov_deg > 0.0 && c.intrinsics.vfov_deg < 170.0,
                 "in (0, 170) degrees",
             ),
             ("camera.noise_px", c.noise_px, c.noise_px >= 0.0, ">= 0 px"),
-        ];
-        if !(c.frame_period_s.is_finite() && c.frame_period_s >= self.dt_s) {
-            return Err(SimConfigError::OutOfRange {
-                key: "camera.frame_period",
-                expected: ">= physics.dt",
-                value: c.frame_period_s,
-            });
-        }
-        for (key, value, ok, expected) in checks {
+            (
+                "camera.frame_period_s",
+                c.frame_period_s,
+                c.frame_period_s >= self.dt_s,
+                ">= physics.dt",
+            ),
+        ]
+    }
+
+    /// Checks every value's range ([`SimConfig::ranges`]).
+    pub fn validate(&self) -> Result<(), SimConfigError> {
+        for (key, value, ok, expected) in self.ranges() {
             if !(ok && value.is_finite()) {
                 return Err(SimConfigError::OutOfRange {
                     key,

@@ -113,6 +113,41 @@ pub fn parameters(spec: &str, scenario: &Scenario) -> serde_json::Value {
     serde_json::Value::Object(out)
 }
 
+/// Every built-in learner with its settings, as Markdown: the book's
+/// reference page (`scripts/reference.sh`).
+pub fn describe_markdown() -> String {
+    let defaults = scasm::ScasmConfig::default();
+    let mut out = String::new();
+    for learner in LEARNERS.iter().map(Learner::Rust) {
+        out += &format!("## `{}`\n\n{}\n\n", learner.name(), learner.about());
+        let shared: Vec<String> = learner
+            .shared()
+            .iter()
+            .filter_map(|k| scasm::declaration::shared(k))
+            .map(|s| format!("`learner.{}` ({})", s.key, (s.get)(&defaults)))
+            .collect();
+        out += &format!("Shared settings it reads: {}.\n\n", shared.join(", "));
+        let own = learner.settings();
+        if own.is_empty() {
+            out += "No settings of its own.\n\n";
+            continue;
+        }
+        out += "| setting | default | range | meaning |\n|---|---|---|---|\n";
+        for s in own {
+            out += &format!(
+                "| `learner.{}.{}` | {} | {} | {} |\n",
+                learner.name(),
+                s.key,
+                s.default,
+                s.range(),
+                s.doc
+            );
+        }
+        out += "\n";
+    }
+    out
+}
+
 /// Every Rust learner and the program `spec` (if one), with its settings
 /// and their defaults at the paper's scale: what `--learner list` prints.
 pub fn describe(extra: Option<&Learner>) -> String {

@@ -8,4 +8,4 @@ mod settings;
 mod table;
 
 pub use data::{Change, LearningMode, MAX_DURATION_S, PAPER_DURATION_S, Scenario, SettingError};
-pub use table::{describe_settings, parse_seeds, setting_keys};
+pub use table::{describe_settings, describe_settings_markdown, parse_seeds, setting_keys};

@@ -26,6 +26,9 @@ pub(crate) struct Entry {
     pub(crate) key: &'static str,
     pub(crate) kind: Kind,
     pub(crate) doc: &'static str,
+    /// The values it takes, in words; `None` for a setting of the world,
+    /// whose range is the world's own check ([`quadsim::SimConfig::ranges`]).
+    pub(crate) range: Option<&'static str>,
     pub(crate) set: fn(&mut Scenario, &str) -> Result<(), String>,
     pub(crate) get: fn(&Scenario) -> toml::Value,
 }
@@ -50,6 +53,7 @@ macro_rules! world_number {
             key: $key,
             kind: Kind::Number,
             doc: $doc,
+            range: None,
             set: |s, v| {
                 s.sim.$($field).+ = number(v)?;
                 Ok(())
@@ -66,6 +70,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "robot.file",
         kind: Kind::Text,
         doc: "a robot file (a shipped robot's name or a path): its URDF, gait and scale",
+        range: Some("a shipped robot's name (ers7, trotter), or a robot file's or URDF's path"),
         set: Scenario::set_robot_file,
         get: |s| {
             toml::Value::String(
@@ -79,6 +84,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "robot.urdf",
         kind: Kind::Text,
         doc: "a URDF file, as robot.file takes it (kept for older scenario files)",
+        range: Some("a URDF's path"),
         set: Scenario::set_robot_file,
         // Recorded as robot.file.
         get: |_| toml::Value::String(String::new()),
@@ -87,6 +93,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "trial.duration",
         kind: Kind::Number,
         doc: "trial length, s",
+        range: Some("(0, 86400] s, and past the last camera.blank_s interval"),
         set: Scenario::set_duration,
         get: |s| toml::Value::Float(s.duration_s),
     },
@@ -94,6 +101,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "trial.seeds",
         kind: Kind::Text,
         doc: "the seeds of a run's trials, A..B (B excluded)",
+        range: Some("A..B with A < B"),
         set: |s, v| {
             s.seeds = parse_seeds(v)?;
             Ok(())
@@ -104,6 +112,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "trial.mode",
         kind: Kind::Text,
         doc: "what is learned from what: simultaneous, sensor-from-action, action-from-sensor",
+        range: Some("simultaneous, sensor-from-action, action-from-sensor"),
         set: |s, v| {
             s.mode = LearningMode::parse(v)?;
             Ok(())
@@ -114,6 +123,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "learner.name",
         kind: Kind::Text,
         doc: "the learner: a built-in's name, or exec:COMMAND for a program (--learner list)",
+        range: Some("a built-in learner's name, or exec:COMMAND"),
         set: |s, v| {
             crate::learners::registry::resolve(v)?;
             s.learner_name = v.into();
@@ -125,6 +135,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "exec.answer_timeout_s",
         kind: Kind::Number,
         doc: "how long a learner program may take to answer, s",
+        range: Some("(0, 3600] s"),
         set: |s, v| {
             let t = number(v)?;
             if !(t > 0.0 && t <= 3600.0) {
@@ -144,6 +155,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "camera.width_px",
         kind: Kind::Count,
         doc: "image width, px",
+        range: None,
         set: |s, v| {
             s.sim.camera.intrinsics.width_px = count(v)?;
             Ok(())
@@ -154,6 +166,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "camera.height_px",
         kind: Kind::Count,
         doc: "image height, px",
+        range: None,
         set: |s, v| {
             s.sim.camera.intrinsics.height_px = count(v)?;
             Ok(())
@@ -179,6 +192,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "camera.blank_s",
         kind: Kind::Text,
         doc: "intervals with no reading, A-B,C-D (s)",
+        range: Some("intervals A-B, comma-separated, within the trial"),
         set: |s, v| {
             s.blank = crate::blanks::Blanks::parse(v, s.duration_s)?;
             Ok(())
@@ -231,6 +245,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "physics.solver_iterations",
         kind: Kind::Count,
         doc: "the constraint solver's iterations a step (1; more, e.g. 4, if the physics blows up)",
+        range: None,
         set: |s, v| {
             s.sim.solver_iterations = count::<usize>(v)?;
             Ok(())
@@ -242,6 +257,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         kind: Kind::Text,
         doc: "how the robot's multibody is stepped: tree (composite rigid bodies, factored along \
               the tree, Coriolis explicit), rapier (rapier's own, Coriolis semi-implicit)",
+        range: Some("tree, rapier"),
         set: |s, v| {
             s.sim.multibody = quadsim::MultibodyDynamics::parse(v)?;
             Ok(())
@@ -293,6 +309,54 @@ pub fn describe_settings() -> String {
         );
     }
     out += "learner.<name>.<key>       each learner's own: see --learner list\n";
+    out
+}
+
+/// Every setting with its type, default, range and doc, as a Markdown table:
+/// the book's reference page (`scripts/reference.sh`). A setting of the world
+/// whose range the table does not state is checked only for being a finite
+/// number here; the world checks it when it is built.
+pub fn describe_settings_markdown() -> String {
+    let defaults = Scenario::paper().ok();
+    let mut out = String::from("| key | type | default | range | meaning |\n|---|---|---|---|---|\n");
+    let row = |key: &str, kind: Kind, default: String, range: &str, doc: &str| {
+        format!(
+            "| `{key}` | {} | {} | {range} | {} |\n",
+            kind_name(kind),
+            if default.is_empty() { "-".into() } else { format!("`{default}`") },
+            doc.replace('|', "\\|")
+        )
+    };
+    for e in &SETTINGS {
+        let value = defaults
+            .as_ref()
+            .map(e.get)
+            .map_or_else(String::new, |v| v.to_string());
+        let range = e.range.map(String::from).unwrap_or_else(|| {
+            quadsim::SimConfig::default()
+                .ranges()
+                .iter()
+                .find(|r| r.0 == e.key)
+                .map_or_else(|| "any finite number".into(), |r| r.3.to_string())
+        });
+        out += &row(e.key, e.kind, value, &range, e.doc);
+    }
+    for s in &scasm::declaration::SHARED {
+        let setting = s.setting(&ScasmConfig::default());
+        let kind = if s.kind == scasm::declaration::Kind::Count {
+            Kind::Count
+        } else {
+            Kind::Number
+        };
+        out += &row(
+            &format!("learner.{}", s.key),
+            kind,
+            setting.default.to_string(),
+            &setting.range(),
+            s.doc,
+        );
+    }
+    out += "| `learner.<name>.<key>` | - | - | - | each learner's own: see [Learners and their settings](learners.md) |\n";
     out
 }
 

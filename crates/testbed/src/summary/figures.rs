@@ -19,25 +19,33 @@ pub struct Field {
     pub get: fn(&Figures) -> f64,
     /// Where it is, to write it.
     pub get_mut: fn(&mut Figures) -> &mut f64,
+    /// What it is, in words (its doc comment): the book's output reference.
+    pub doc: &'static str,
 }
 
-/// Declares [`Figures`] and its [`Figures::FIELDS`] from one list: a new
+/// Declares [`Figures`] and its [`Figures::FIELDS`] from one list (a field's
+/// serde attribute written `@serde(...)`, after its doc comment): a new
 /// metric is one entry here (and where its value comes from, in
 /// [`Figures::of`]); every table, statistic and file that lists the figures
 /// reads `FIELDS`.
 macro_rules! figures {
-    ($( $(#[$meta:meta])* $name:ident ),+ $(,)?) => {
+    ($( $(#[doc = $doc:literal])* $(@serde($($serde:tt)*))? $name:ident ),+ $(,)?) => {
         /// Figures of one trial, as `summary.json` has them (NaN where a figure
         /// does not apply or could not be had).
         #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
         pub struct Figures {
-            $( $(#[$meta])* pub $name: f64, )+
+            $( $(#[doc = $doc])* $(#[serde($($serde)*)])? pub $name: f64, )+
         }
 
         impl Figures {
             /// Every figure, in `summary.json`'s order.
             pub const FIELDS: &'static [Field] = &[
-                $( Field { name: stringify!($name), get: |f| f.$name, get_mut: |f| &mut f.$name }, )+
+                $( Field {
+                    name: stringify!($name),
+                    get: |f| f.$name,
+                    get_mut: |f| &mut f.$name,
+                    doc: concat!($($doc, "\n"),*),
+                }, )+
             ];
         }
     };
@@ -59,27 +67,27 @@ figures! {
     action_a0_rmse_mm_s,
     /// The sensor model a section IV learner builds from A0 on the trial's
     /// own frames, at the end, mm: the uncalibrated start's sensor model.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     sensor_start_rmse_mm,
     /// The trial's information floor on the action metric (see
     /// [`crate::floor`]): no unbiased learner of the learner's degrees does
     /// better on this trial's data, mm/s.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     action_crb_rmse_mm_s,
     /// The information floor on the sensor metric, mm.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     sensor_crb_rmse_mm,
     /// The reading noise the floor found in the trial's ground truth, px.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     floor_reading_noise_px,
     /// The process noise it found per frame of a steady walk, mm.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     floor_steady_noise_mm,
     /// The process noise it found per frame while the gait changes over, mm.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     floor_changing_noise_mm,
     /// The location's bob about its smooth walk it found, mm.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     floor_bob_mm,
     /// `| |k / b| - 1 |`.
     consistency,
@@ -97,7 +105,7 @@ figures! {
     localisation_a0_rmse_mm,
     /// The localiser with the best polynomials of the learner's degrees
     /// through the measured models (the model class's floor), last 60 s, mm.
-    #[serde(default = "nan")]
+    @serde(default = "nan")
     localisation_best_poly_rmse_mm,
     /// The learner's raw `x_s` alone, last 60 s, mm.
     x_s_rmse_mm,
@@ -106,40 +114,40 @@ figures! {
     /// Seconds of the trial in which the learner, doubting its own models by
     /// its check on itself, reported older ones in their place; NaN, and
     /// absent from JSON, for a learner with no such check.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     fallback_s,
     /// The fields from here on say how the learner weathered the world's
     /// first change during the trial (see [`Recovery`]); NaN, and absent
     /// from JSON, if the world did not change. This one: the action model's
     /// error at the last judgement before the change, mm/s.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_before_action_rmse_mm_s,
     /// Its highest error after the change, mm/s.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_peak_action_rmse_mm_s,
     /// Its settled error in the changed world, mm/s.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_settled_action_rmse_mm_s,
     /// How long after the change its error is back within 1.2x of settled, s
     /// (NaN if it never came back).
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     reconvergence_action_s,
     /// The sensor model's error at the last judgement before the change, mm.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_before_sensor_rmse_mm,
     /// Its highest error after the change, mm.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_peak_sensor_rmse_mm,
     /// Its settled error in the changed world, mm.
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     change_settled_sensor_rmse_mm,
     /// How long after the change its error is back within 1.2x of settled, s
     /// (NaN if it never came back).
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     reconvergence_sensor_s,
     /// How long after the change both models are back: the later of the two,
     /// s (NaN if either never came back).
-    #[serde(default = "nan", skip_serializing_if = "is_nan")]
+    @serde(default = "nan", skip_serializing_if = "is_nan")
     reconvergence_s,
 }
 
