@@ -15,6 +15,8 @@ Every fenced block whose language can be run is run, or skipped with a stated re
   end ok (``trials_ok`` 1 in its summary.json);
 - ``toml`` after ``<!-- check: scenario -->``: a scenario file; a one-trial ``train`` reads it;
 - ``rust``: compiled and run by ``mdbook test`` (not here);
+- a ``sh`` block after ``<!-- check: full REASON -->`` runs as written, with no cut (a scenario
+  whose world changes late in a long trial, say);
 - any block after ``<!-- check: skip REASON -->`` is skipped, and the reason printed.
 
 A runnable block with neither a check nor a reason is an error: nothing is left unchecked
@@ -90,15 +92,15 @@ def commands(text):
     return out
 
 
-def cut(cmd):
-    """The command with a trial's duration cut, and benchmarks run once."""
+def cut(cmd, full=False):
+    """The command with a trial's duration cut (unless `full`), and benchmarks run once."""
     # A trailing comment is not part of the command.
     try:
         words = shlex.split(cmd, comments=True)
     except ValueError:
         return cmd
     cmd = shlex.join(words)
-    if TRIAL_COMMANDS.search(cmd):
+    if TRIAL_COMMANDS.search(cmd) and not full:
         extra = ["--set", f"trial.duration={DURATION}"]
         if "cargo" in words[:1] and "--" not in words:
             extra = ["--"] + extra
@@ -178,9 +180,13 @@ def main():
                     by_mdbook += 1
                     continue
                 err = None
-                if lang in ("sh", "bash") and not marker:
+                full = marker.startswith("full")
+                if full and not marker[4:].strip(" :"):
+                    failures.append(f"{where}: `check: full` needs a reason")
+                    continue
+                if lang in ("sh", "bash") and (not marker or full):
                     for cmd in commands(text):
-                        c = cut(cmd)
+                        c = cut(cmd, full)
                         print(f"run  {where}: {c}", flush=True)
                         err = run(c, "command")
                         ran += 1

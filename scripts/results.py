@@ -32,6 +32,10 @@ def stamp(run_dir):
     commit = re.search(r"commit ([0-9a-f]+)", text)
     command = re.search(r"^# Command: (.*)$", text, re.M)
     seeds = re.search(r'^seeds = "([^"]+)"', text, re.M)
+    # A flag given on the command line beats the file's setting.
+    flag = re.search(r"--seeds (\S+)", command.group(1)) if command else None
+    if flag:
+        seeds = flag
     return {
         "commit": commit.group(1) if commit else "unknown",
         "uncommitted_changes": "uncommitted" in text.split("\n\n")[0],

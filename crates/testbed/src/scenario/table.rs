@@ -318,12 +318,17 @@ pub fn describe_settings() -> String {
 /// number here; the world checks it when it is built.
 pub fn describe_settings_markdown() -> String {
     let defaults = Scenario::paper().ok();
-    let mut out = String::from("| key | type | default | range | meaning |\n|---|---|---|---|---|\n");
+    let mut out =
+        String::from("| key | type | default | range | meaning |\n|---|---|---|---|---|\n");
     let row = |key: &str, kind: Kind, default: String, range: &str, doc: &str| {
         format!(
             "| `{key}` | {} | {} | {range} | {} |\n",
             kind_name(kind),
-            if default.is_empty() { "-".into() } else { format!("`{default}`") },
+            if default.is_empty() {
+                "-".into()
+            } else {
+                format!("`{default}`")
+            },
             doc.replace('|', "\\|")
         )
     };
