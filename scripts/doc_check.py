@@ -13,7 +13,9 @@ Every fenced block whose language can be run is run, or skipped with a stated re
 - ``python``, ``js``/``javascript``, ``c`` after ``<!-- check: learner -->``: the block (or the
   file it ``{{#include}}``s) is a learner program; it runs a short ``train`` trial, which must
   end ok (``trials_ok`` 1 in its summary.json);
-- ``toml`` after ``<!-- check: scenario -->``: a scenario file; a one-trial ``train`` reads it;
+- ``toml`` after ``<!-- check: scenario -->``: a scenario file; a one-trial ``train`` runs it;
+- ``toml`` after ``<!-- check: robot DIR -->``: a robot file as it would stand in DIR (its URDF
+  is named relative to it); a one-trial ``train`` of that robot runs;
 - ``rust``: compiled and run by ``mdbook test`` (not here);
 - a ``sh`` block after ``<!-- check: full REASON -->`` runs as written, with no cut (a scenario
   whose world changes late in a long trial, say);
@@ -25,6 +27,8 @@ silently. A failing block is reported with its file and line. Exits 1 if any blo
 
 import json
 import os
+import shutil
+import tomllib
 import re
 import shlex
 import subprocess
@@ -110,8 +114,12 @@ def cut(cmd, full=False):
     return cmd
 
 
+# Errors without backtraces; the learner package importable from anywhere.
+ENV = dict(os.environ, RUST_BACKTRACE="0", PYTHONPATH=os.path.join(ROOT, "python"))
+
+
 def run(cmd, what):
-    r = subprocess.run(["bash", "-c", cmd], cwd=ROOT, capture_output=True, text=True)
+    r = subprocess.run(["bash", "-c", cmd], cwd=ROOT, capture_output=True, text=True, env=ENV)
     if r.returncode != 0:
         tail = "\n".join((r.stdout + r.stderr).strip().split("\n")[-15:])
         return f"{what}: `{cmd}` exited with {r.returncode}:\n{tail}"
@@ -144,11 +152,25 @@ def learner(path, line, lang, text, tmp):
     return None
 
 
+def robot(line, text, home, tmp):
+    """A robot file as it would stand in `home`: written beside a copy of its URDF, then trained."""
+    d = os.path.join(tmp, f"robot_{line}")
+    os.makedirs(d, exist_ok=True)
+    urdf = tomllib.loads(text).get("urdf")
+    if urdf:
+        shutil.copy(os.path.join(ROOT, home, urdf), os.path.join(d, os.path.basename(urdf)))
+    f = os.path.join(d, "robot.toml")
+    open(f, "w", encoding="utf-8").write(text)
+    out = os.path.join(tmp, f"robot_run_{line}")
+    return run(shlex.join(TRAIN + ["--robot", f, "--trials", "1", "--duration", DURATION, "--out", out]),
+               "the robot file")
+
+
 def scenario(line, text, tmp):
     f = os.path.join(tmp, f"scenario_{line}.toml")
     open(f, "w", encoding="utf-8").write(text)
     out = os.path.join(tmp, f"scenario_run_{line}")
-    return run(shlex.join(TRAIN + ["--config", f, "--trials", "1", "--duration", "5", "--out", out]),
+    return run(shlex.join(TRAIN + ["--config", f, "--trials", "1", "--out", out]),
                "the scenario")
 
 
@@ -195,6 +217,10 @@ def main():
                 elif marker == "learner" and lang in ("python", "js", "javascript", "c"):
                     print(f"run  {where}: a {lang} learner's trial", flush=True)
                     err = learner(path, line, lang, text, tmp)
+                    ran += 1
+                elif marker.startswith("robot ") and lang == "toml":
+                    print(f"run  {where}: a robot file's trial", flush=True)
+                    err = robot(line, text, marker[6:].strip(), tmp)
                     ran += 1
                 elif marker == "scenario" and lang == "toml":
                     print(f"run  {where}: a scenario file's trial", flush=True)
