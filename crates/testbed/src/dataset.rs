@@ -23,9 +23,16 @@ pub const FORMAT_VERSION: u32 = 2;
 /// `truth.csv` (its trials read as not blown up).
 const OLDEST_FORMAT_VERSION: u32 = 1;
 
-const EVENTS_HEADER: &str = "t_s,dt_s,command,obs_px";
-const TRUTH_HEADER: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright,blew_up";
-const TRUTH_HEADER_V1: &str = "t_s,x_true_mm,lateral_mm,yaw_rad,upright";
+const EVENTS_HEADER: &[&str] = &["t_s", "dt_s", "command", "obs_px"];
+const TRUTH_HEADER: &[&str] = &[
+    "t_s",
+    "x_true_mm",
+    "lateral_mm",
+    "yaw_rad",
+    "upright",
+    "blew_up",
+];
+const TRUTH_HEADER_V1: &[&str] = &["t_s", "x_true_mm", "lateral_mm", "yaw_rad", "upright"];
 
 /// A dataset that cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -108,25 +115,28 @@ pub fn write(dir: &Path, recording: &Recording, meta: &DatasetMeta) -> std::io::
     output::write_csv(
         &dir.join("events.csv"),
         EVENTS_HEADER,
-        recording
-            .frames
-            .iter()
-            .map(|f| format!("{},{},{},{}", f.t_s, f.dt_s, f.command, cell(f.obs_px))),
+        recording.frames.iter().map(|f| {
+            vec![
+                f.t_s.to_string(),
+                f.dt_s.to_string(),
+                f.command.to_string(),
+                cell(f.obs_px),
+            ]
+        }),
     )?;
     output::write_csv(
         &dir.join("truth.csv"),
         TRUTH_HEADER,
         recording.frames.iter().map(|f| {
             let t = &f.truth;
-            format!(
-                "{},{},{},{},{},{}",
-                f.end_s(),
-                t.x_mm,
-                t.lateral_mm,
-                t.yaw_rad,
-                u8::from(t.upright),
-                u8::from(t.blew_up)
-            )
+            vec![
+                f.end_s().to_string(),
+                t.x_mm.to_string(),
+                t.lateral_mm.to_string(),
+                t.yaw_rad.to_string(),
+                u8::from(t.upright).to_string(),
+                u8::from(t.blew_up).to_string(),
+            ]
         }),
     )?;
     output::write_json(&dir.join("dataset.json"), meta)
@@ -139,35 +149,42 @@ fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> DatasetError + '_ {
     }
 }
 
-/// The rows of a CSV file with this exact header, split into cells.
-fn rows(path: &Path, header: &str) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
-    let text = std::fs::read_to_string(path).map_err(io_error(path))?;
-    let malformed = |line: usize, reason: String| DatasetError::Malformed {
+/// The rows of a CSV file with this exact header, split into cells, each
+/// with its line.
+fn rows(path: &Path, header: &[&str]) -> Result<Vec<(usize, Vec<String>)>, DatasetError> {
+    let malformed = |line: u64, reason: String| DatasetError::Malformed {
         path: path.display().to_string(),
-        line,
+        line: usize::try_from(line).unwrap_or(usize::MAX),
         reason,
     };
-    let mut lines = text.lines().enumerate();
-    match lines.next() {
-        Some((_, h)) if h.trim() == header => {}
-        Some((_, h)) => return Err(malformed(1, format!("header `{h}`, expected `{header}`"))),
-        None => return Err(malformed(0, "empty file".into())),
+    std::fs::metadata(path).map_err(io_error(path))?;
+    let table = output::read_csv(path).map_err(|e| malformed(e.line, e.reason))?;
+    if table
+        .header
+        .iter()
+        .map(|h| h.trim())
+        .ne(header.iter().copied())
+    {
+        return Err(malformed(
+            1,
+            format!(
+                "header `{}`, expected `{}`",
+                table.header.join(","),
+                header.join(",")
+            ),
+        ));
     }
-    let columns = header.split(',').count();
-    lines
-        .filter(|(_, l)| !l.trim().is_empty())
-        .map(|(i, l)| {
-            let cells: Vec<String> = l.split(',').map(|c| c.trim().to_string()).collect();
-            if cells.len() == columns {
-                Ok((i + 1, cells))
-            } else {
-                Err(malformed(
-                    i + 1,
-                    format!("{} cells, expected {columns}", cells.len()),
-                ))
-            }
+    Ok(table
+        .rows
+        .into_iter()
+        .filter(|(_, cells)| !(cells.len() == 1 && cells[0].trim().is_empty()))
+        .map(|(line, cells)| {
+            (
+                usize::try_from(line).unwrap_or(usize::MAX),
+                cells.into_iter().map(|c| c.trim().to_string()).collect(),
+            )
         })
-        .collect()
+        .collect())
 }
 
 /// Reads a dataset from `dir`, checking its format version and that its files

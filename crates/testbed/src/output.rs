@@ -2,7 +2,6 @@
 //! then renamed): the measured models in the paper's column layout, a run's
 //! settings, and each trial's dataset, trace, errors over time and models.
 
-use std::io::Write;
 use std::path::Path;
 
 use scasm::Polynomial;
@@ -13,23 +12,92 @@ use crate::reference::Judgement;
 use crate::scenario::Scenario;
 use crate::trial::{TraceRow, TrialOutcome};
 
-/// Writes `header` and `rows` to `path`: to `path.tmp`, then renamed into place,
-/// so that a reader never sees half a file.
-pub fn write_csv(
-    path: &Path,
-    header: &str,
-    rows: impl IntoIterator<Item = String>,
-) -> std::io::Result<()> {
+/// Writes `header` and `rows` to `path` as CSV (quoted where a cell needs it,
+/// by the `csv` crate): to `path.tmp`, then renamed into place, so that a
+/// reader never sees half a file.
+pub fn write_csv<H, R>(path: &Path, header: H, rows: R) -> std::io::Result<()>
+where
+    H: IntoIterator,
+    H::Item: AsRef<[u8]>,
+    R: IntoIterator<Item = Vec<String>>,
+{
     let tmp = path.with_extension("csv.tmp");
     {
-        let mut f = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
-        writeln!(f, "{header}")?;
+        let mut w = csv::WriterBuilder::new()
+            .flexible(false)
+            .from_writer(std::io::BufWriter::new(std::fs::File::create(&tmp)?));
+        w.write_record(header)?;
         for r in rows {
-            writeln!(f, "{r}")?;
+            w.write_record(&r)?;
         }
-        f.flush()?;
+        w.flush()?;
     }
     std::fs::rename(&tmp, path)
+}
+
+/// A CSV file as read by [`read_csv`]: its header and each row's cells with
+/// the line the row starts on (1-based, the header being line 1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CsvTable {
+    /// The header's cells.
+    pub header: Vec<String>,
+    /// Each row: the line it starts on, and its cells.
+    pub rows: Vec<(u64, Vec<String>)>,
+}
+
+/// Why a CSV file could not be read: the line (0 for the file as a whole)
+/// and what is wrong there.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct CsvError {
+    /// The line, 1-based; 0 for the whole file.
+    pub line: u64,
+    /// What is wrong.
+    pub reason: String,
+}
+
+/// Reads a CSV file whole (by the `csv` crate: quoted cells may hold commas,
+/// quotes and line breaks). Every row must have as many cells as the header;
+/// blank lines are skipped. Errors name the line.
+pub fn read_csv(path: &Path) -> Result<CsvTable, CsvError> {
+    let whole = |reason: String| CsvError { line: 0, reason };
+    let file = std::fs::File::open(path).map_err(|e| whole(e.to_string()))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_reader(std::io::BufReader::new(file));
+    let mut records = reader.records();
+    let header: Vec<String> = match records.next() {
+        Some(Ok(h)) => h.iter().map(String::from).collect(),
+        Some(Err(e)) => return Err(csv_error(&e)),
+        None => return Err(whole("empty file".into())),
+    };
+    let mut rows = Vec::new();
+    for record in records {
+        let record = record.map_err(|e| csv_error(&e))?;
+        let line = record.position().map_or(0, csv::Position::line);
+        if record.len() != header.len() {
+            return Err(CsvError {
+                line,
+                reason: format!(
+                    "{} cells where the header has {} columns (a truncated or damaged file?)",
+                    record.len(),
+                    header.len()
+                ),
+            });
+        }
+        rows.push((line, record.iter().map(String::from).collect()));
+    }
+    Ok(CsvTable { header, rows })
+}
+
+fn csv_error(e: &csv::Error) -> CsvError {
+    CsvError {
+        line: e.position().map_or(0, csv::Position::line),
+        reason: match e.kind() {
+            csv::ErrorKind::Utf8 { .. } => "not UTF-8 text".into(),
+            _ => e.to_string(),
+        },
+    }
 }
 
 /// Writes `bytes` to `path` via `path.tmp` and a rename.
@@ -96,18 +164,25 @@ pub fn write_learner_run(dir: &Path, outcome: &TrialOutcome) -> std::io::Result<
 pub fn write_measured_action(dir: &Path, rows: &[MeasuredVelocity]) -> std::io::Result<()> {
     write_csv(
         &dir.join("measured_action.csv"),
-        "command,velocity_mm_s,std_mm_s,min_mm_s,max_mm_s,upright,blew_up",
+        [
+            "command",
+            "velocity_mm_s",
+            "std_mm_s",
+            "min_mm_s",
+            "max_mm_s",
+            "upright",
+            "blew_up",
+        ],
         rows.iter().map(|m| {
-            format!(
-                "{},{},{},{},{},{},{}",
-                m.command,
-                m.velocity_mm_s,
-                m.std_mm_s,
-                m.min_mm_s(),
-                m.max_mm_s(),
-                m.upright,
-                m.blew_up
-            )
+            vec![
+                m.command.to_string(),
+                m.velocity_mm_s.to_string(),
+                m.std_mm_s.to_string(),
+                m.min_mm_s().to_string(),
+                m.max_mm_s().to_string(),
+                m.upright.to_string(),
+                m.blew_up.to_string(),
+            ]
         }),
     )
 }
@@ -119,12 +194,23 @@ pub fn write_measured_action(dir: &Path, rows: &[MeasuredVelocity]) -> std::io::
 pub fn write_measured_sensor(dir: &Path, rows: &[MeasuredReading]) -> std::io::Result<()> {
     write_csv(
         &dir.join("measured_sensor.csv"),
-        "distance_mm,obs_px,std_px,nominal_mm,distance_std_mm,missed",
+        [
+            "distance_mm",
+            "obs_px",
+            "std_px",
+            "nominal_mm",
+            "distance_std_mm",
+            "missed",
+        ],
         rows.iter().map(|r| {
-            format!(
-                "{},{},{},{},{},{}",
-                r.distance_mm, r.obs_px, r.std_px, r.nominal_mm, r.distance_std_mm, r.missed
-            )
+            vec![
+                r.distance_mm.to_string(),
+                r.obs_px.to_string(),
+                r.std_px.to_string(),
+                r.nominal_mm.to_string(),
+                r.distance_std_mm.to_string(),
+                r.missed.to_string(),
+            ]
         }),
     )
 }
@@ -146,15 +232,26 @@ fn cell(v: Option<f64>) -> String {
 pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
     write_csv(
         path,
-        "t,command,obs,x_true_mm,x_a,x_s,x_loc,x_loc_std,x_loc_true_mm,x_loc_a0,x_loc_best_mm,\
-         falling_back",
+        [
+            "t",
+            "command",
+            "obs",
+            "x_true_mm",
+            "x_a",
+            "x_s",
+            "x_loc",
+            "x_loc_std",
+            "x_loc_true_mm",
+            "x_loc_a0",
+            "x_loc_best_mm",
+            "falling_back",
+        ],
         trace.iter().map(|r| {
-            format!(
-                "{},{},{},{},{},{},{},{},{},{},{},{}",
-                r.t_s,
-                r.command,
+            vec![
+                r.t_s.to_string(),
+                r.command.to_string(),
                 cell(r.obs_px),
-                r.x_true_mm,
+                r.x_true_mm.to_string(),
                 cell(r.x_a),
                 cell(r.x_s),
                 cell(r.x_loc),
@@ -162,8 +259,8 @@ pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
                 cell(r.x_loc_true_mm),
                 cell(r.x_loc_a0),
                 cell(r.x_loc_best_mm),
-                cell(r.falling_back.map(|b| f64::from(u8::from(b))))
-            )
+                cell(r.falling_back.map(|b| f64::from(u8::from(b)))),
+            ]
         }),
     )
 }
@@ -172,15 +269,14 @@ pub fn write_trace(path: &Path, trace: &[TraceRow]) -> std::io::Result<()> {
 pub fn write_errors_over_time(path: &Path, over_time: &[Judgement]) -> std::io::Result<()> {
     write_csv(
         path,
-        "t,action_rmse_mm_s,sensor_rmse_mm,consistency",
+        ["t", "action_rmse_mm_s", "sensor_rmse_mm", "consistency"],
         over_time.iter().map(|j| {
-            format!(
-                "{},{},{},{}",
-                j.t_s,
+            vec![
+                j.t_s.to_string(),
                 cell(j.action_rmse_mm_s),
                 cell(j.sensor_rmse_mm),
-                cell(j.consistency)
-            )
+                cell(j.consistency),
+            ]
         }),
     )
 }

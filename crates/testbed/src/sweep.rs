@@ -288,12 +288,12 @@ pub struct Results {
     rows: BTreeMap<String, Row>,
 }
 
-fn header(keys: &[String]) -> String {
+fn header(keys: &[String]) -> Vec<String> {
     let mut h: Vec<String> = keys.to_vec();
     h.push("seed".into());
     h.extend(Figures::FIELDS.iter().map(|m| m.name.to_string()));
     h.push("status".into());
-    h.join(",")
+    h
 }
 
 impl Results {
@@ -325,14 +325,14 @@ impl Results {
         let path = dir.join("sweep.csv");
         output::write_csv(
             &path,
-            &header(&self.keys),
+            header(&self.keys),
             self.rows.values().map(|r| {
                 let mut cells: Vec<String> =
                     r.run.settings.iter().map(|(_, v)| v.clone()).collect();
                 cells.push(r.run.seed.to_string());
                 cells.extend(metric_values(&r.figures).map(|v| v.to_string()));
-                cells.push(r.status.to_string().replace(',', ";"));
-                cells.join(",")
+                cells.push(r.status.to_string());
+                cells
             }),
         )
         .map_err(|e| file_error(&path, e))
@@ -342,14 +342,21 @@ impl Results {
     /// `seed` in its header. `None` if there is no such file yet.
     pub fn read(dir: &Path) -> Result<Option<Self>, SweepError> {
         let path = dir.join("sweep.csv");
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
+        match std::fs::metadata(&path) {
+            Ok(_) => {}
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
             Err(e) => return Err(file_error(&path, e)),
-        };
-        let mut lines = text.lines();
-        let head = lines.next().unwrap_or("");
-        let columns: Vec<&str> = head.split(',').collect();
+        }
+        let table = output::read_csv(&path).map_err(|e| SweepError::File {
+            path: path.display().to_string(),
+            reason: if e.line == 0 {
+                e.reason
+            } else {
+                format!("line {}: {}", e.line, e.reason)
+            },
+        })?;
+        let head = table.header.join(",");
+        let columns: Vec<&str> = table.header.iter().map(String::as_str).collect();
         let keys: Vec<String> = match columns.iter().position(|c| *c == "seed") {
             Some(i) => columns[..i].iter().map(|c| c.to_string()).collect(),
             None => {
@@ -380,23 +387,15 @@ impl Results {
         }
         let mut results = Self::new(keys.clone());
         let keys = &keys;
-        for (n, line) in lines.enumerate() {
-            let cells: Vec<&str> = line.split(',').collect();
+        for (line, cells) in &table.rows {
             let bad = |reason: &str| SweepError::File {
                 path: path.display().to_string(),
-                reason: format!("line {}: {reason}", n + 2),
+                reason: format!("line {line}: {reason}"),
             };
-            if cells.len() != columns.len() {
-                return Err(bad(&format!(
-                    "{} cells where the header has {} columns (a truncated or damaged file?)",
-                    cells.len(),
-                    columns.len()
-                )));
-            }
             let settings = keys
                 .iter()
-                .zip(&cells)
-                .map(|(k, v)| (k.clone(), v.to_string()))
+                .zip(cells)
+                .map(|(k, v)| (k.clone(), v.clone()))
                 .collect();
             let seed = cells[keys.len()].parse().map_err(|_| bad("bad seed"))?;
             let mut figures = Figures::filled(f64::NAN);
@@ -411,7 +410,7 @@ impl Results {
             results.insert(Row {
                 run: Run { settings, seed },
                 figures,
-                status: TrialStatus::parse(cells[cells.len() - 1]),
+                status: TrialStatus::parse(&cells[cells.len() - 1]),
             });
         }
         Ok(Some(results))
@@ -463,7 +462,7 @@ impl Results {
         }
         output::write_csv(
             &path,
-            &h.join(","),
+            &h,
             self.summary().into_iter().map(|g| {
                 let mut cells: Vec<String> = g.settings.into_iter().map(|(_, v)| v).collect();
                 cells.push(g.runs_ok.to_string());
@@ -475,7 +474,7 @@ impl Results {
                         cells.push((field.get)(f).to_string());
                     }
                 }
-                cells.join(",")
+                cells
             }),
         )
         .map_err(|e| file_error(&path, e))

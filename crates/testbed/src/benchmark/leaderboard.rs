@@ -26,27 +26,23 @@ pub struct Entry {
 /// figure ([`Figures::FIELDS`]), whether it ended worse than its start, and
 /// its status.
 pub fn write_leaderboard_csv(path: &Path, entries: &[Entry]) -> std::io::Result<()> {
-    let fields: Vec<&str> = Figures::FIELDS.iter().map(|f| f.name).collect();
+    let header = ["learner", "scenario", "seed"]
+        .into_iter()
+        .chain(Figures::FIELDS.iter().map(|f| f.name))
+        .chain(["worse_than_start", "status"]);
     output::write_csv(
         path,
-        &format!(
-            "learner,scenario,seed,{},worse_than_start,status",
-            fields.join(",")
-        ),
+        header,
         entries.iter().map(|e| {
-            let figures: Vec<String> = Figures::FIELDS
-                .iter()
-                .map(|f| (f.get)(&e.figures).to_string())
-                .collect();
-            format!(
-                "{},{},{},{},{},{}",
-                e.learner,
-                e.scenario,
-                e.seed,
-                figures.join(","),
-                e.status.is_ok() && e.figures.worse_than_start(),
-                e.status.to_string().replace(',', ";")
-            )
+            let mut cells = vec![e.learner.clone(), e.scenario.clone(), e.seed.to_string()];
+            cells.extend(
+                Figures::FIELDS
+                    .iter()
+                    .map(|f| (f.get)(&e.figures).to_string()),
+            );
+            cells.push((e.status.is_ok() && e.figures.worse_than_start()).to_string());
+            cells.push(e.status.to_string());
+            cells
         }),
     )
 }
@@ -69,9 +65,14 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
         path: path.display().to_string(),
         reason,
     };
-    let text = std::fs::read_to_string(path).map_err(|e| error(e.to_string()))?;
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap_or("").split(',').collect();
+    let table = output::read_csv(path).map_err(|e| {
+        error(if e.line == 0 {
+            e.reason
+        } else {
+            format!("line {}: {}", e.line, e.reason)
+        })
+    })?;
+    let head: Vec<&str> = table.header.iter().map(String::as_str).collect();
     let n = head.len();
     if n < 6
         || head[..3] != ["learner", "scenario", "seed"]
@@ -90,15 +91,8 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
         })
         .collect::<Result<_, _>>()?;
     let mut entries = Vec::new();
-    for (k, line) in lines.enumerate() {
-        let bad = |reason: String| error(format!("line {}: {reason}", k + 2));
-        let cells: Vec<&str> = line.split(',').collect();
-        if cells.len() != n {
-            return Err(bad(format!(
-                "{} cells where the header has {n} columns (a truncated or damaged file?)",
-                cells.len()
-            )));
-        }
+    for (line, cells) in &table.rows {
+        let bad = |reason: String| error(format!("line {line}: {reason}"));
         let mut figures = Figures::filled(f64::NAN);
         for (field, cell) in fields.iter().zip(&cells[3..n - 2]) {
             *(field.get_mut)(&mut figures) = cell
@@ -111,7 +105,7 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
             seed: cells[2]
                 .parse()
                 .map_err(|_| bad(format!("`{}` is not a seed", cells[2])))?,
-            status: TrialStatus::parse(cells[n - 1]),
+            status: TrialStatus::parse(&cells[n - 1]),
             figures,
         });
     }
@@ -336,6 +330,31 @@ mod tests {
             .expect_err("truncated")
             .to_string();
         assert!(e.contains("leaderboard.csv: line 3"), "{e}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn a_crashed_learners_multi_line_status_reads_back_as_one_row() {
+        // A learner program's traceback, with commas, quotes and line breaks,
+        // is the status of its trial: the file must still hold one row per
+        // entry, and read back to the same status (issue 55).
+        let dir = std::env::temp_dir().join(format!("leaderboard-crash-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("leaderboard.csv");
+        let status = TrialStatus::Error(
+            "crashed: it exited with status 1; the last lines of its stderr:\n    \
+             Traceback (most recent call last):\n      File \"crash.py\", line 3, in <module>\n    \
+             ValueError: a, b"
+                .into(),
+        );
+        let mut crashed = entry("crash-py", 2, f64::NAN);
+        crashed.status = status.clone();
+        let entries = vec![entry("scasm", 1, 12.5), crashed, entry("scasm", 3, 9.0)];
+        write_leaderboard_csv(&path, &entries).expect("write");
+        let back = read_leaderboard_csv(&path).expect("read");
+        assert_eq!(back.len(), 3);
+        assert_eq!(back[1].status, status);
+        assert_eq!(back[2].seed, 3);
         let _ = std::fs::remove_dir_all(&dir);
     }
 }
