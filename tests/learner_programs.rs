@@ -278,3 +278,50 @@ fn learners_own_settings_are_sweep_axes() {
         .expect_err("out of range");
     assert!(e.to_string().contains("(0, inf)"), "{e}");
 }
+
+/// Whether process `pid` has gone (or is only a zombie waiting for its
+/// reaper), within 2 s.
+#[cfg(target_os = "linux")]
+fn gone(pid: &str) -> bool {
+    let until = std::time::Instant::now() + std::time::Duration::from_secs(2);
+    loop {
+        let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+        // The state is the field after the command's closing parenthesis.
+        let state = stat.rsplit_once(") ").map(|(_, rest)| &rest[..1]);
+        if matches!(state, None | Some("Z")) {
+            return true;
+        }
+        if std::time::Instant::now() > until {
+            return false;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+}
+
+#[test]
+#[cfg(target_os = "linux")]
+fn a_hung_learner_behind_a_shell_leaves_nothing_running() {
+    // issue 55: the shell starts a helper that holds the learner's stdout,
+    // then becomes a learner that stops answering; the trial fails on the
+    // time limit, and the helper must not outlive it.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("hung-learner");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let pid_file = dir.join("helper.pid");
+    let _ = std::fs::remove_file(&pid_file);
+    let spec = format!(
+        "exec:sh -c 'sleep 300 & echo $! > {}; exec python3 tests/fixtures/learners/bad.py hang'",
+        pid_file.display()
+    );
+    match learn(&spec, &["exec.answer_timeout_s=0.5"]) {
+        Err(TrialError::LearnerFailed(why)) => {
+            assert!(why.contains("did not answer within 0.5 s"), "{why}")
+        }
+        other => panic!("{other:?}"),
+    }
+    let pid = std::fs::read_to_string(&pid_file).expect("the helper's pid");
+    assert!(
+        gone(pid.trim()),
+        "the helper {} outlived its learner's trial",
+        pid.trim()
+    );
+}

@@ -1,12 +1,14 @@
 //! A child process that speaks in lines: lines written to its stdin, lines
 //! read from its stdout within a time limit, the last lines of its stderr
-//! kept for error messages. Dropping it ends the process.
+//! kept for error messages. On unix it runs in a process group of its own,
+//! and every way out (the end of a trial, a fault, dropping it, the host's
+//! Ctrl-C) kills the whole group, so that nothing it started outlives it.
 
 use std::collections::VecDeque;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::process::{ChildStdin, Command, ExitStatus, Stdio};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, Once};
 use std::time::{Duration, Instant};
 
 /// How many of the child's last stderr lines an error quotes.
@@ -15,6 +17,37 @@ const STDERR_LINES: usize = 12;
 /// How long a child has to exit once told the trial is over, before it is
 /// killed.
 const EXIT_GRACE: Duration = Duration::from_secs(2);
+
+/// The process groups of the children running now, killed on the host's
+/// Ctrl-C (a group of its own does not get the terminal's interrupt).
+static LIVE_GROUPS: Mutex<Vec<u32>> = Mutex::new(Vec::new());
+
+/// Kills every process of the group `id` (the group's leader's pid).
+fn kill_group(id: u32) {
+    #[cfg(unix)]
+    if let Ok(pid) = i32::try_from(id) {
+        use nix::sys::signal::{Signal, killpg};
+        // The group may be gone already: nothing to do then.
+        let _ = killpg(nix::unistd::Pid::from_raw(pid), Signal::SIGKILL);
+    }
+    #[cfg(not(unix))]
+    let _ = id;
+}
+
+/// On the first child: a Ctrl-C handler that kills the live children's
+/// groups and exits as an interrupted program does (130). A handler the
+/// program set itself is left in place.
+fn kill_groups_on_interrupt() {
+    static SET: Once = Once::new();
+    SET.call_once(|| {
+        let _ = ctrlc::set_handler(|| {
+            if let Ok(groups) = LIVE_GROUPS.lock() {
+                groups.iter().copied().for_each(kill_group);
+            }
+            std::process::exit(130);
+        });
+    });
+}
 
 /// Why a line could not be exchanged.
 #[derive(Debug, Clone, PartialEq)]
@@ -29,6 +62,9 @@ pub enum Fault {
 #[derive(Debug)]
 pub struct Child {
     process: std::process::Child,
+    /// Whether the child has been reaped: its pid, and so its group's id,
+    /// may then be another's, and must not be signalled.
+    reaped: bool,
     stdin: Option<BufWriter<ChildStdin>>,
     lines: Receiver<String>,
     stderr: Arc<Mutex<VecDeque<String>>>,
@@ -41,13 +77,25 @@ impl Child {
         let (program, args) = words
             .split_first()
             .ok_or("an empty command: write exec:PROGRAM ARGS...")?;
-        let mut process = Command::new(program)
+        let mut command = Command::new(program);
+        command
             .args(args)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
+            .stderr(Stdio::piped());
+        #[cfg(unix)]
+        {
+            use std::os::unix::process::CommandExt;
+            // Its own group, led by itself: what it starts is killed with it.
+            command.process_group(0);
+        }
+        kill_groups_on_interrupt();
+        let mut process = command
             .spawn()
             .map_err(|e| format!("cannot start `{program}`: {e}"))?;
+        if let Ok(mut groups) = LIVE_GROUPS.lock() {
+            groups.push(process.id());
+        }
         let stdin = process.stdin.take().map(BufWriter::new);
         let (send, lines) = mpsc::channel();
         if let Some(out) = process.stdout.take() {
@@ -77,6 +125,7 @@ impl Child {
         }
         Ok(Self {
             process,
+            reaped: false,
             stdin,
             lines,
             stderr,
@@ -120,14 +169,33 @@ impl Child {
     /// its stdin broke, so it is ending or has ended).
     fn ended(&mut self) -> Option<String> {
         let until = Instant::now() + EXIT_GRACE;
-        loop {
-            match self.process.try_wait() {
-                Ok(Some(status)) => return Some(describe(status)),
-                Ok(None) if Instant::now() < until => {
-                    std::thread::sleep(Duration::from_millis(5));
-                }
-                _ => return None,
+        while !self.has_exited() {
+            if Instant::now() >= until {
+                return None;
             }
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        self.end_group()
+    }
+
+    /// Whether the child has exited, without reaping it (on unix), so that
+    /// its group can still be killed by its id.
+    fn has_exited(&mut self) -> bool {
+        #[cfg(unix)]
+        {
+            use nix::sys::wait::{Id, WaitPidFlag, WaitStatus, waitid};
+            let flags = WaitPidFlag::WEXITED | WaitPidFlag::WNOHANG | WaitPidFlag::WNOWAIT;
+            match i32::try_from(self.process.id()) {
+                Ok(pid) => !matches!(
+                    waitid(Id::Pid(nix::unistd::Pid::from_raw(pid)), flags),
+                    Ok(WaitStatus::StillAlive)
+                ),
+                Err(_) => true,
+            }
+        }
+        #[cfg(not(unix))]
+        {
+            !matches!(self.process.try_wait(), Ok(None))
         }
     }
 
@@ -159,19 +227,35 @@ impl Child {
             let _ = stdin.flush();
         }
         let until = Instant::now() + EXIT_GRACE;
-        while matches!(self.process.try_wait(), Ok(None)) && Instant::now() < until {
+        while !self.has_exited() && Instant::now() < until {
             std::thread::sleep(Duration::from_millis(2));
         }
+        self.end_group();
+    }
+
+    /// Kills the child's whole group (what it started too, even after the
+    /// child itself exited: it is not reaped until then) and reaps the
+    /// child; how it ended, in words. Once only.
+    fn end_group(&mut self) -> Option<String> {
+        if self.reaped {
+            return None;
+        }
+        let id = self.process.id();
+        kill_group(id);
         let _ = self.process.kill();
-        let _ = self.process.wait();
+        let status = self.process.wait().ok();
+        self.reaped = true;
+        if let Ok(mut groups) = LIVE_GROUPS.lock() {
+            groups.retain(|&g| g != id);
+        }
+        status.map(describe)
     }
 }
 
 impl Drop for Child {
     fn drop(&mut self) {
         self.stdin.take();
-        let _ = self.process.kill();
-        let _ = self.process.wait();
+        self.end_group();
     }
 }
 
