@@ -222,14 +222,45 @@ fn models(m: ModelsLine) -> Result<Models, String> {
 
 /// The host's answer to a hello: the learner's own settings in force and
 /// the shared ones (`learner.gamma`, the degrees, and the command scale).
-pub fn settings_line(own: &[(String, f64)], shared: &[(&str, f64)]) -> String {
-    let own: serde_json::Map<String, Value> =
-        own.iter().map(|(k, v)| (k.clone(), json!(v))).collect();
+/// A setting declared integer (its own by its hello, a shared one by its
+/// declaration) is written as a JSON integer.
+pub fn settings_line(
+    own: &[(String, f64)],
+    declared: &[Setting],
+    shared: &[(&str, f64)],
+) -> String {
+    let own: serde_json::Map<String, Value> = own
+        .iter()
+        .map(|(k, v)| {
+            let integer = declared
+                .iter()
+                .any(|d| &d.key == k && d.kind == Kind::Count);
+            (k.clone(), number(*v, integer))
+        })
+        .collect();
     let shared: serde_json::Map<String, Value> = shared
         .iter()
-        .map(|(k, v)| ((*k).to_string(), json!(v)))
+        .map(|(k, v)| {
+            let integer =
+                scasm::declaration::shared(k).is_some_and(|s| s.kind == Kind::Count);
+            ((*k).to_string(), number(*v, integer))
+        })
         .collect();
     json!({"type": "settings", "protocol": VERSION, "settings": own, "shared": shared}).to_string()
+}
+
+/// `v` as JSON: an integer where `integer` and it is a whole number a double
+/// holds exactly, else a number as written.
+fn number(v: f64, integer: bool) -> Value {
+    const EXACT: f64 = 9_007_199_254_740_992.0; // 2^53
+    if integer && v.fract() == 0.0 && v.abs() <= EXACT {
+        // Whole and within 2^53: the conversion is exact.
+        #[allow(clippy::cast_possible_truncation)]
+        let i = v as i64;
+        json!(i)
+    } else {
+        json!(v)
+    }
 }
 
 /// An event, as a line.
@@ -252,6 +283,28 @@ pub const END: &str = r#"{"type":"end"}"#;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn integer_settings_reach_the_learner_as_integers() {
+        let line = r#"{"type":"hello","protocol":1,"name":"mine","settings":[
+            {"key":"k","default":2,"min":1,"max":3,"integer":true},{"key":"g","default":0.5}]}"#
+            .replace('\n', "");
+        let Ok(Said::Hello(h)) = parse(&line) else {
+            panic!("{:?}", parse(&line))
+        };
+        let text = settings_line(
+            &[("k".into(), 3.0), ("g".into(), 2.0)],
+            &h.settings,
+            &[("sensor_degree", 3.0), ("gamma", 0.999), ("command_scale", 300.0)],
+        );
+        let v: Value = serde_json::from_str(&text).expect("json");
+        // Declared integer: an integer; a number that happens to be whole: a number.
+        assert!(v["settings"]["k"].is_i64(), "{text}");
+        assert!(v["settings"]["g"].is_f64(), "{text}");
+        assert!(v["shared"]["sensor_degree"].is_i64(), "{text}");
+        assert!(v["shared"]["gamma"].is_f64(), "{text}");
+        assert!(v["shared"]["command_scale"].is_f64(), "{text}");
+    }
 
     #[test]
     fn a_hello_is_read_and_checked() {
