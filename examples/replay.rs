@@ -148,13 +148,15 @@ fn main() -> Result<()> {
         .collect();
     args.rerun.write(&trials)?;
     println!(
-        "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads\nresults in {}",
+        "learning took {wall_s:.2} s wall for {} trials ({:.0} s simulated) on {} threads\n\
+         the learner {:.1} ms a trial (mean)\nresults in {}",
         rows.len(),
         datasets
             .iter()
             .filter_map(|d| d.recording.frames.last().map(|f| f.end_s()))
             .sum::<f64>(),
         rayon::current_num_threads(),
+        1000.0 * aggregate.mean.learner_wall_s,
         out.display()
     );
     ensure!(

@@ -147,9 +147,11 @@ fn main() -> Result<()> {
     println!("  {figures} figures (PNG and SVG) and index.html written");
 
     println!(
-        "\n{} trials, mean {:.0}x real time per trial; whole run {:.1} s wall",
+        "\n{} trials: the physics {:.0}x real time, the learner {:.1} ms a trial (means); \
+         whole run {:.1} s wall",
         rows.len(),
         aggregate.mean.realtime_factor,
+        1000.0 * aggregate.mean.learner_wall_s,
         started.elapsed().as_secs_f64(),
     );
     println!(

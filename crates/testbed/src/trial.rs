@@ -409,6 +409,10 @@ pub struct TrialOutcome {
     pub blew_up_at_s: Option<f64>,
     /// Simulated seconds per wall-clock second of the recording's physics.
     pub realtime_factor: f64,
+    /// Wall-clock seconds spent in the learner over the trial: its events and
+    /// the queries of its models (what the simulation took is apart, in
+    /// `realtime_factor`).
+    pub learner_wall_s: f64,
     /// When the world changed during the trial, s (see [`Reference::at`]).
     pub world_changes_s: Vec<f64>,
     /// The trial's information floor at the learner's degrees (see
@@ -491,14 +495,20 @@ pub fn learn(
             })
         })
         .collect();
+    let mut learner_wall = std::time::Duration::ZERO;
     for (k, f) in frames.iter().enumerate() {
+        // The learner's own time: its events, and its models' first query
+        // after them (a program answers it; later queries are the answer kept).
+        let started = std::time::Instant::now();
         feed_checked(learner, f)?;
+        let mut row = TraceRow::of(f, learner);
+        let models = (learner.action_model(), learner.sensor_model());
+        learner_wall += started.elapsed();
         let t_s = f.end_s();
         if (k + 1) % judge_every == 0 {
             over_time.push(reference.judge(t_s, learner));
         }
-        let mut row = TraceRow::of(f, learner);
-        if let (Some(action), Some(sensor)) = (learner.action_model(), learner.sensor_model()) {
+        if let (Some(action), Some(sensor)) = models {
             let models = Learned { action, sensor };
             if let Some(b) = with_learned.step(models, f.command, f.dt_s, f.obs_px) {
                 (row.x_loc, row.x_loc_std) = (Some(b.x), Some(b.std));
@@ -554,6 +564,7 @@ pub fn learn(
         fell_at_s: recording.fell_at_s(),
         blew_up_at_s: recording.blew_up_at_s(),
         realtime_factor: recording.realtime_factor,
+        learner_wall_s: learner_wall.as_secs_f64(),
         world_changes_s: reference.changes.iter().map(|c| c.0).collect(),
     })
 }

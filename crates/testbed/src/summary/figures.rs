@@ -91,8 +91,12 @@ figures! {
     floor_bob_mm,
     /// `| |k / b| - 1 |`.
     consistency,
-    /// Simulated seconds per wall-clock second.
+    /// Simulated seconds per wall-clock second of the trial's physics.
     realtime_factor,
+    /// Wall-clock seconds the learner took over the trial: its events and
+    /// the queries of its models (the physics' own time is `realtime_factor`'s).
+    @serde(default = "nan")
+    learner_wall_s,
     /// The localiser with the learned models: location RMSE over the last 60 s
     /// after the best affine map to mm, mm.
     localisation_rmse_mm,
@@ -234,6 +238,7 @@ impl Figures {
             floor_bob_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.bob_mm),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
+            learner_wall_s: outcome.learner_wall_s,
             fallback_s: fallback_s(&outcome.trace),
             ..Self::recovery_of(outcome, Self::localisation_of(outcome))
         }

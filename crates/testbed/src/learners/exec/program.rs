@@ -168,7 +168,11 @@ impl ExecLearner {
             ));
         }
         child
-            .send(&protocol::settings_line(&own.0, &program.hello.settings, shared))
+            .send(&protocol::settings_line(
+                &own.0,
+                &program.hello.settings,
+                shared,
+            ))
             .map_err(|f| format!("`{spec}` {}", fault(&f, &child, "on its settings")))?;
         Ok(Self {
             name: hello.name,

@@ -241,8 +241,7 @@ pub fn settings_line(
     let shared: serde_json::Map<String, Value> = shared
         .iter()
         .map(|(k, v)| {
-            let integer =
-                scasm::declaration::shared(k).is_some_and(|s| s.kind == Kind::Count);
+            let integer = scasm::declaration::shared(k).is_some_and(|s| s.kind == Kind::Count);
             ((*k).to_string(), number(*v, integer))
         })
         .collect();
@@ -295,7 +294,11 @@ mod tests {
         let text = settings_line(
             &[("k".into(), 3.0), ("g".into(), 2.0)],
             &h.settings,
-            &[("sensor_degree", 3.0), ("gamma", 0.999), ("command_scale", 300.0)],
+            &[
+                ("sensor_degree", 3.0),
+                ("gamma", 0.999),
+                ("command_scale", 300.0),
+            ],
         );
         let v: Value = serde_json::from_str(&text).expect("json");
         // Declared integer: an integer; a number that happens to be whole: a number.
