@@ -17,10 +17,10 @@ use clap::Parser;
 use rayon::prelude::*;
 use testbed::dataset::{self, Dataset};
 use testbed::experiment;
-use testbed::output;
 use testbed::provenance::Provenance;
 use testbed::scenario::Scenario;
 use testbed::summary::RunSummary;
+use testbed::{output, run_dir};
 
 /// Replay recorded trials to a learner.
 #[derive(Debug, Parser)]
@@ -100,16 +100,22 @@ fn main() -> Result<()> {
         .par_iter()
         .zip(&scenarios)
         .map(|(d, scenario)| {
-            let outcome = experiment::learn(scenario, &d.meta.reference, &d.recording, &learner);
-            if let Ok(o) = &outcome {
-                let dir = out.join(format!("trial-{}", d.meta.seed));
-                if let Err(e) = output::write_learner_run(&dir, o) {
-                    if let Ok(mut v) = write_errors.lock() {
-                        v.push(e.to_string());
-                    }
+            let run = experiment::learn_kept(
+                scenario,
+                &d.meta.reference,
+                &d.recording,
+                &learner,
+                experiment::JUDGE_EVERY_S,
+            );
+            let dir = out.join(format!("trial-{}", d.meta.seed));
+            let written =
+                run_dir::write_learner_files(&dir, run.outcome.as_ref(), run.stderr.as_deref());
+            if let Err(e) = written {
+                if let Ok(mut v) = write_errors.lock() {
+                    v.push(e.to_string());
                 }
             }
-            (d.meta.seed, outcome)
+            (d.meta.seed, run.outcome)
         })
         .collect();
     let wall_s = started.elapsed().as_secs_f64();

@@ -81,10 +81,8 @@ fn main() -> Result<()> {
     );
     let bar = scasm_testbed::progress_bar(seeds.len() as u64, "trials");
     let write_errors = Mutex::new(Vec::new());
-    let results = experiment::run_trials(&scenario, &models, &seeds, &|_, done| {
-        if let Some(e) =
-            done.and_then(|d| run_dir::write_trial(&out, &scenario, &models, &made_by, d).err())
-        {
+    let results = experiment::run_trials(&scenario, &models, &seeds, &|trial| {
+        if let Err(e) = run_dir::write_trial(&out, &scenario, &models, &made_by, trial) {
             if let Ok(mut v) = write_errors.lock() {
                 v.push(e.to_string());
             }

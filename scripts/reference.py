@@ -52,6 +52,11 @@ FILES = {
     "train/trial-<seed>/trace.csv": "the learner and the localisers, one row a frame",
     "train/trial-<seed>/errors_over_time.csv": "both errors every 5 s (Fig. 8)",
     "train/trial-<seed>/models.json": "the final models: raw-unit coefficients, lowest power first",
+    "failed/trial-<seed>/failure.json": "written in place of the learner's trace and models when a trial "
+                                        "fails: its status, the reason, and the frame and time (s) it failed at "
+                                        "where known (a `train` whose learner program crashed, here)",
+    "failed/trial-<seed>/learner_stderr.txt": "everything a learner program wrote to its stderr during the trial "
+                                              "(up to 4 MiB), whether the trial ended ok or not",
     "replay/config.toml": "as train's",
     "replay/summary.json": "as train's",
     "replay/trial-<seed>/trace.csv": "as train's",
@@ -118,15 +123,15 @@ COLUMNS = {
 STATS = ("mean", "std", "median", "p10", "p90", "n")
 
 
-def run(args):
+def run(args, may_fail=False):
     r = subprocess.run(args, cwd=ROOT, capture_output=True, text=True)
-    if r.returncode != 0:
+    if r.returncode != 0 and not may_fail:
         sys.exit(f"reference: `{' '.join(args)}` exited with {r.returncode}:\n{r.stderr[-3000:]}")
     return r.stdout
 
 
-def example(name, *args):
-    return run([os.path.join(EXAMPLES, name), *args])
+def example(name, *args, may_fail=False):
+    return run([os.path.join(EXAMPLES, name), *args], may_fail)
 
 
 def figure_docs():
@@ -169,6 +174,9 @@ def produce(tmp):
     d = lambda name: os.path.join(tmp, name)  # noqa: E731
     example("train", "--trials", "2", "--duration", DURATION, "--out", d("train"), "--cache", cache)
     example("replay", d("train"), "--learner", "batch-ml", "--out", d("replay"))
+    # A learner program whose trial fails: what a failed trial keeps.
+    example("train", "--learner", "exec:python3 tests/fixtures/learners/bad.py crash", "--trials", "1",
+            "--duration", "20", "--out", d("failed"), "--cache", cache, may_fail=True)
     example("benchmark", "--learners", "scasm", "--scenarios", "default", "--seeds", "0..2",
             "--set", f"trial.duration={DURATION}", "--out", d("benchmark"), "--cache", cache)
     example("sweep", "--gamma", "0.99,0.999", "--seeds", "0..2", "--set", f"trial.duration={DURATION}",
@@ -200,6 +208,8 @@ def outputs_page():
             if name not in seen:
                 errors.append(f"{name} is described but no program wrote it")
         for name, full in seen.items():
+            if name.startswith("failed/") and name not in FILES:
+                continue  # the failed run's other files are train's
             if name not in FILES:
                 errors.append(f"{name} was written but is not described in scripts/reference.py's FILES")
                 continue

@@ -149,7 +149,7 @@ fn a_run_writes_the_papers_seven_figures_the_localisation_and_its_page() {
     let (scenario, models, demos) = setup();
     let mut scenario = scenario.clone();
     scenario.duration_s = 50.0;
-    let trials: Vec<_> = experiment::run_trials(&scenario, models, &[0, 1], &|_, _| {})
+    let trials: Vec<_> = experiment::run_trials(&scenario, models, &[0, 1], &|_| {})
         .into_iter()
         .map(|(_, r)| r.expect("trial").1)
         .collect();

@@ -136,8 +136,18 @@ fn each_way_a_program_misbehaves_fails_its_trial_saying_how() {
         ("refuse_event", &[], "gave up: I refuse this event"),
     ] {
         let spec = bad(mode);
-        match learn(&spec, settings) {
-            Err(TrialError::LearnerFailed(why)) => {
+        let failed = learn(&spec, settings).expect_err(mode);
+        // Dated by the frame it happened in: the bad learners misbehave
+        // after 200 events: 100 to 200 frames in (a frame has one or two).
+        let (frame, t_s) = failed.at().expect("where");
+        assert!((99..=201).contains(&frame), "{mode}: frame {frame}");
+        assert!(
+            failed
+                .to_string()
+                .starts_with(&format!("at {t_s:.2} s (frame {frame}): "))
+        );
+        match failed.root() {
+            TrialError::LearnerFailed(why) => {
                 assert!(why.contains(says), "{mode}: {why}");
                 assert!(
                     why.contains(&format!("learner `bad-{mode}`")),
@@ -315,8 +325,9 @@ fn a_hung_learner_behind_a_shell_leaves_nothing_running() {
         "exec:sh -c 'sleep 300 & echo $! > {}; exec python3 tests/fixtures/learners/bad.py hang'",
         pid_file.display()
     );
-    match learn(&spec, &["exec.answer_timeout_s=0.5"]) {
-        Err(TrialError::LearnerFailed(why)) => {
+    let failed = learn(&spec, &["exec.answer_timeout_s=0.5"]).expect_err("hangs");
+    match failed.root() {
+        TrialError::LearnerFailed(why) => {
             assert!(why.contains("did not answer within 0.5 s"), "{why}")
         }
         other => panic!("{other:?}"),
@@ -326,5 +337,48 @@ fn a_hung_learner_behind_a_shell_leaves_nothing_running() {
         gone(pid.trim()),
         "the helper {} outlived its learner's trial",
         pid.trim()
+    );
+}
+
+#[test]
+fn a_failed_trial_keeps_its_world_its_failure_and_its_learners_stderr() {
+    // issue 55: a train run whose learner crashes mid-trial keeps the
+    // recorded world (replayable), when and why it failed, and all that the
+    // learner wrote to stderr.
+    let (scenario, models, _) = setup();
+    let mut s = scenario.clone();
+    s.set(&format!("learner.name={}", bad("crash")))
+        .expect("named");
+    s.set("trial.duration=20").expect("short");
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("failed-trial");
+    let _ = std::fs::remove_dir_all(&out);
+    let made_by = testbed::provenance::Provenance::current();
+    let results = experiment::run_trials(&s, models, &[5], &|trial| {
+        testbed::run_dir::write_trial(&out, &s, models, &made_by, trial).expect("written");
+    });
+    assert!(results[0].1.is_err(), "the learner crashes");
+    let dir = out.join("trial-5");
+    let back = testbed::dataset::read(&dir).expect("the recorded world is kept, and reads back");
+    assert_eq!(back.recording.frames.len(), 400);
+    let failure: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("failure.json")).expect("failure"))
+            .expect("json");
+    let frame = failure["frame"].as_u64().expect("the frame");
+    assert!((99..=201).contains(&frame), "{failure}");
+    assert!(failure["t_s"].as_f64().is_some(), "{failure}");
+    assert!(
+        failure["reason"]
+            .as_str()
+            .is_some_and(|r| r.contains("exited with status 3")),
+        "{failure}"
+    );
+    let stderr = std::fs::read_to_string(dir.join("learner_stderr.txt")).expect("stderr");
+    assert!(
+        stderr.contains("bad learner: crashing on purpose"),
+        "{stderr}"
+    );
+    assert!(
+        !dir.join("models.json").exists(),
+        "no models of a failed run"
     );
 }

@@ -39,7 +39,7 @@ fn bits(p: Option<Polynomial>) -> Vec<u64> {
 fn trials_learn_both_models_as_readme_says() {
     let (scenario, models) = setup();
     let seeds: Vec<u64> = (100..106).collect();
-    let results = experiment::run_trials(scenario, models, &seeds, &|_, _| {});
+    let results = experiment::run_trials(scenario, models, &seeds, &|_| {});
     let reference = models.reference();
     let a0 = metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
     let (mut action, mut sensor) = (Vec::new(), Vec::new());

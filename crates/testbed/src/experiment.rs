@@ -115,9 +115,62 @@ pub fn learn_every(
     name: &str,
     judge_every_s: f64,
 ) -> Result<TrialOutcome, TrialError> {
+    learn_kept(scenario, models, recording, name, judge_every_s).outcome
+}
+
+/// A learner's run over a recording, and what it wrote beside its models.
+#[derive(Debug)]
+pub struct LearnerRun {
+    /// The run judged, or why it failed.
+    pub outcome: Result<TrialOutcome, TrialError>,
+    /// A learner program's whole stderr (`None` for a Rust learner).
+    pub stderr: Option<String>,
+}
+
+/// [`learn_every`], keeping what a learner program wrote to its stderr.
+pub fn learn_kept(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    recording: &Recording,
+    name: &str,
+    judge_every_s: f64,
+) -> LearnerRun {
     let reference = models.reference();
-    let mut learner =
-        learners::build(name, scenario, &reference).map_err(TrialError::LearnerSetup)?;
+    let built = match learners::build_kept(name, scenario, &reference) {
+        Ok(b) => b,
+        Err(e) => {
+            return LearnerRun {
+                outcome: Err(TrialError::LearnerSetup(e)),
+                stderr: None,
+            };
+        }
+    };
+    let learners::Built {
+        mut learner,
+        stderr,
+    } = built;
+    let outcome = learn_built(
+        scenario,
+        recording,
+        learner.as_mut(),
+        &reference,
+        judge_every_s,
+    );
+    // Ended first, so that its last words are in.
+    drop(learner);
+    LearnerRun {
+        outcome,
+        stderr: stderr.and_then(|s| s.lock().ok().map(|l| l.text())),
+    }
+}
+
+fn learn_built(
+    scenario: &Scenario,
+    recording: &Recording,
+    learner: &mut dyn scasm::CalibrationLearner,
+    reference: &crate::reference::Reference,
+    judge_every_s: f64,
+) -> Result<TrialOutcome, TrialError> {
     // The localisation baseline: S learned from the identity action model A0
     // (the paper's section IV), with the scenario's learner settings.
     let params = scenario
@@ -131,7 +184,7 @@ pub fn learn_every(
     .map_err(|e| TrialError::LearnerSetup(e.to_string()))?;
     trial::learn(
         recording,
-        learner.as_mut(),
+        learner,
         trial::Comparators {
             a0_baseline: Some(&mut a0_baseline),
             best_degrees: Some((
@@ -139,7 +192,7 @@ pub fn learn_every(
                 scenario.learner.sensor_degree,
             )),
         },
-        &reference,
+        reference,
         judge_every_s,
     )
 }
@@ -158,20 +211,60 @@ pub fn run_one(scenario: &Scenario, models: &MeasuredModels, seed: u64) -> Trial
     Ok((recording, outcome))
 }
 
-/// Runs one trial per seed in parallel, calling `done` as each finishes. A
-/// trial that cannot run does not stop the others: its error is its result.
+/// One trial as it ended, for whoever keeps its files: the recording (if the
+/// world could be recorded), the learner's outcome or why it failed, and a
+/// learner program's stderr.
+#[derive(Debug, Clone, Copy)]
+pub struct TrialRecord<'a> {
+    /// The trial's seed.
+    pub seed: u64,
+    /// The recorded world, if it could be recorded.
+    pub recording: Option<&'a Recording>,
+    /// The learner's run judged, or why the trial failed.
+    pub outcome: Result<&'a TrialOutcome, &'a TrialError>,
+    /// A learner program's whole stderr.
+    pub stderr: Option<&'a str>,
+}
+
+/// Runs one trial per seed in parallel, calling `done` as each finishes
+/// (with its recording and its learner's stderr, kept also when the learner
+/// failed). A trial that cannot run does not stop the others: its error is
+/// its result.
 pub fn run_trials(
     scenario: &Scenario,
     models: &MeasuredModels,
     seeds: &[u64],
-    done: &(dyn Fn(u64, Option<&RecordedTrial>) + Sync),
+    done: &(dyn Fn(&TrialRecord<'_>) + Sync),
 ) -> Vec<(u64, TrialResult)> {
     seeds
         .par_iter()
         .map(|&seed| {
-            let result = run_one(scenario, models, seed);
-            done(seed, result.as_ref().ok());
-            (seed, result)
+            let recording = match record(scenario, models, seed) {
+                Ok(r) => r,
+                Err(e) => {
+                    done(&TrialRecord {
+                        seed,
+                        recording: None,
+                        outcome: Err(&e),
+                        stderr: None,
+                    });
+                    return (seed, Err(e));
+                }
+            };
+            let run = learn_kept(
+                scenario,
+                models,
+                &recording,
+                &scenario.learner_name,
+                JUDGE_EVERY_S,
+            );
+            done(&TrialRecord {
+                seed,
+                recording: Some(&recording),
+                outcome: run.outcome.as_ref(),
+                stderr: run.stderr.as_deref(),
+            });
+            (seed, run.outcome.map(|o| (recording, o)))
         })
         .collect()
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use crate::dataset::{self, DatasetMeta};
 use crate::demos::Demos;
-use crate::experiment::RecordedTrial;
+use crate::experiment::TrialRecord;
 use crate::output;
 use crate::provenance::Provenance;
 use crate::reference::MeasuredModels;
@@ -27,21 +27,56 @@ pub fn write_reference(out: &Path, models: &MeasuredModels) -> std::io::Result<(
 }
 
 /// A trial's directory, `out/trial-<seed>/`: its dataset (the recorded
-/// world, replayable) and its learner's trace, errors over time and models.
+/// world, replayable), kept whatever became of the learner, and its
+/// learner's files ([`write_learner_files`]).
 pub fn write_trial(
     out: &Path,
     scenario: &Scenario,
     models: &MeasuredModels,
     made_by: &Provenance,
-    (recording, outcome): &RecordedTrial,
+    trial: &TrialRecord<'_>,
 ) -> std::io::Result<()> {
-    let dir = out.join(format!("trial-{}", recording.seed));
-    dataset::write(
-        &dir,
-        recording,
-        &DatasetMeta::new(scenario, models, recording, made_by),
-    )?;
-    output::write_learner_run(&dir, outcome)
+    let dir = out.join(format!("trial-{}", trial.seed));
+    match trial.recording {
+        Some(recording) => dataset::write(
+            &dir,
+            recording,
+            &DatasetMeta::new(scenario, models, recording, made_by),
+        )?,
+        None => std::fs::create_dir_all(&dir)?,
+    }
+    write_learner_files(&dir, trial.outcome, trial.stderr)
+}
+
+/// A learner's files in a trial's folder `dir`: its trace, errors over time
+/// and models if its trial ran to the end, or `failure.json` (the status,
+/// and the frame and time of the failure where known) if it did not; and a
+/// learner program's whole stderr, `learner_stderr.txt`.
+pub fn write_learner_files(
+    dir: &Path,
+    outcome: Result<&crate::trial::TrialOutcome, &crate::trial::TrialError>,
+    stderr: Option<&str>,
+) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    match outcome {
+        Ok(o) => output::write_learner_run(dir, o)?,
+        Err(e) => {
+            let at = e.at();
+            output::write_json(
+                &dir.join("failure.json"),
+                &serde_json::json!({
+                    "status": e.to_string(),
+                    "reason": e.root().to_string(),
+                    "frame": at.map(|(frame, _)| frame),
+                    "t_s": at.map(|(_, t_s)| t_s),
+                }),
+            )?;
+        }
+    }
+    if let Some(text) = stderr {
+        output::write_atomic(&dir.join("learner_stderr.txt"), text.as_bytes())?;
+    }
+    Ok(())
 }
 
 /// The demonstrations' traces and models, in `out/demos/`.

@@ -40,6 +40,34 @@ pub enum TrialError {
     /// The trial's world could not be recorded.
     #[error("recording failed: {0}")]
     Recording(String),
+    /// The learner failed at a frame of the trial (`source` says how).
+    #[error("at {t_s:.2} s (frame {frame}): {source}")]
+    At {
+        /// The frame, counted from 0.
+        frame: usize,
+        /// The end of that frame, s into the trial.
+        t_s: f64,
+        /// What failed.
+        source: Box<TrialError>,
+    },
+}
+
+impl TrialError {
+    /// The error itself, without where in the trial it happened.
+    pub fn root(&self) -> &TrialError {
+        match self {
+            Self::At { source, .. } => source.root(),
+            other => other,
+        }
+    }
+
+    /// Where in the trial it happened, if known: the frame and its end, s.
+    pub fn at(&self) -> Option<(usize, f64)> {
+        match self {
+            Self::At { frame, t_s, .. } => Some((*frame, *t_s)),
+            _ => None,
+        }
+    }
 }
 
 /// Settings of one trial.
@@ -499,8 +527,13 @@ pub fn learn(
     for (k, f) in frames.iter().enumerate() {
         // The learner's own time: its events, and its models' first query
         // after them (a program answers it; later queries are the answer kept).
+        let at = |e: TrialError| TrialError::At {
+            frame: k,
+            t_s: f.end_s(),
+            source: Box::new(e),
+        };
         let started = std::time::Instant::now();
-        feed_checked(learner, f)?;
+        feed_checked(learner, f).map_err(at)?;
         let mut row = TraceRow::of(f, learner);
         let models = (learner.action_model(), learner.sensor_model());
         learner_wall += started.elapsed();
@@ -525,7 +558,7 @@ pub fn learn(
             .and_then(|(_, models)| with_best.step(models, f.command, f.dt_s, f.obs_px))
             .map(|b| b.x);
         if let Some(baseline) = a0_baseline.as_deref_mut() {
-            feed(baseline, f)?;
+            feed(baseline, f).map_err(|e| at(e.into()))?;
             if let Some(sensor) = baseline.sensor_model() {
                 let models = Learned {
                     action: Polynomial::identity(),
@@ -537,7 +570,7 @@ pub fn learn(
             }
         }
         if let Some(e) = learner_failed(learner) {
-            return Err(e);
+            return Err(at(e));
         }
         trace.push(row);
     }

@@ -37,6 +37,28 @@ pub fn build(
     scenario: &Scenario,
     reference: &Reference,
 ) -> Result<BoxedLearner, String> {
+    build_kept(spec, scenario, reference).map(|b| b.learner)
+}
+
+/// A learner built for a trial, and what it writes beside its models.
+pub struct Built {
+    /// The learner.
+    pub learner: BoxedLearner,
+    /// A program's stderr, as it is written (`None` for a Rust learner).
+    pub stderr: Option<exec::child::SharedStderr>,
+}
+
+impl std::fmt::Debug for Built {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Built")
+            .field("learner", &self.learner.name())
+            .field("stderr", &self.stderr)
+            .finish()
+    }
+}
+
+/// [`build`], keeping a handle on a program's stderr.
+pub fn build_kept(spec: &str, scenario: &Scenario, reference: &Reference) -> Result<Built, String> {
     let learner = resolve(spec)?;
     if scenario.mode != LearningMode::Simultaneous && !learner.one_sided() {
         return Err(format!(
@@ -48,18 +70,27 @@ pub fn build(
     match learner {
         Learner::Rust(declaration) => {
             let mode = given_model(scenario, reference)?;
-            (declaration.build)(&BuildContext {
-                shared: scenario.learner,
-                own,
-                mode,
+            Ok(Built {
+                learner: (declaration.build)(&BuildContext {
+                    shared: scenario.learner,
+                    own,
+                    mode,
+                })?,
+                stderr: None,
             })
         }
-        Learner::Program(program) => Ok(Box::new(exec::ExecLearner::start(
-            &program,
-            &own,
-            &shared_values(scenario),
-            scenario.answer_timeout_s,
-        )?)),
+        Learner::Program(program) => {
+            let learner = exec::ExecLearner::start(
+                &program,
+                &own,
+                &shared_values(scenario),
+                scenario.answer_timeout_s,
+            )?;
+            Ok(Built {
+                stderr: Some(learner.stderr()),
+                learner: Box::new(learner),
+            })
+        }
     }
 }
 

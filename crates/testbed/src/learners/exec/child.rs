@@ -14,6 +14,44 @@ use std::time::{Duration, Instant};
 /// How many of the child's last stderr lines an error quotes.
 const STDERR_LINES: usize = 12;
 
+/// How much of the child's stderr is kept whole for the trial's folder
+/// (`learner_stderr.txt`), bytes; past it, only the count of what was left
+/// out is kept.
+pub const STDERR_KEPT_BYTES: usize = 4 << 20;
+
+/// Everything a child wrote to its stderr, up to [`STDERR_KEPT_BYTES`].
+#[derive(Debug, Default)]
+pub struct StderrLog {
+    text: String,
+    left_out: usize,
+}
+
+impl StderrLog {
+    fn push(&mut self, line: &str) {
+        if self.text.len() + line.len() < STDERR_KEPT_BYTES {
+            self.text.push_str(line);
+            self.text.push('\n');
+        } else {
+            self.left_out += line.len() + 1;
+        }
+    }
+
+    /// What it wrote, with a last line saying how much was left out, if any.
+    pub fn text(&self) -> String {
+        if self.left_out == 0 {
+            self.text.clone()
+        } else {
+            format!(
+                "{}[{} more bytes of stderr were left out: {STDERR_KEPT_BYTES} are kept]\n",
+                self.text, self.left_out
+            )
+        }
+    }
+}
+
+/// A child's stderr as it is written, shared with whoever keeps it.
+pub type SharedStderr = Arc<Mutex<StderrLog>>;
+
 /// How long a child has to exit once told the trial is over, before it is
 /// killed.
 const EXIT_GRACE: Duration = Duration::from_secs(2);
@@ -68,6 +106,7 @@ pub struct Child {
     stdin: Option<BufWriter<ChildStdin>>,
     lines: Receiver<String>,
     stderr: Arc<Mutex<VecDeque<String>>>,
+    log: SharedStderr,
 }
 
 impl Child {
@@ -109,11 +148,15 @@ impl Child {
             });
         }
         let stderr = Arc::new(Mutex::new(VecDeque::new()));
+        let log = SharedStderr::default();
         if let Some(err) = process.stderr.take() {
-            let tail = Arc::clone(&stderr);
+            let (tail, whole) = (Arc::clone(&stderr), Arc::clone(&log));
             std::thread::spawn(move || {
                 for line in BufReader::new(err).lines() {
                     let Ok(line) = line else { break };
+                    if let Ok(mut w) = whole.lock() {
+                        w.push(&line);
+                    }
                     if let Ok(mut t) = tail.lock() {
                         if t.len() == STDERR_LINES {
                             t.pop_front();
@@ -129,7 +172,13 @@ impl Child {
             stdin,
             lines,
             stderr,
+            log,
         })
+    }
+
+    /// Its whole stderr so far, as it is written (up to [`STDERR_KEPT_BYTES`]).
+    pub fn stderr_log(&self) -> SharedStderr {
+        Arc::clone(&self.log)
     }
 
     /// Queues one line for the child (sent at the next [`Child::receive`]

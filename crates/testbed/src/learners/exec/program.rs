@@ -8,7 +8,7 @@ use std::time::Duration;
 use scasm::declaration::{Setting, Values};
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
-use crate::learners::exec::child::{Child, Fault};
+use crate::learners::exec::child::{Child, Fault, SharedStderr};
 use crate::learners::exec::protocol::{self, Models, Said};
 
 /// The prefix that names a learner program.
@@ -136,6 +136,7 @@ pub fn program_named(name: &str) -> Option<Program> {
 #[derive(Debug)]
 pub struct ExecLearner {
     name: String,
+    stderr: SharedStderr,
     answer_timeout: Duration,
     state: Mutex<State>,
     failure: OnceLock<String>,
@@ -176,6 +177,7 @@ impl ExecLearner {
             .map_err(|f| format!("`{spec}` {}", fault(&f, &child, "on its settings")))?;
         Ok(Self {
             name: hello.name,
+            stderr: child.stderr_log(),
             answer_timeout: Duration::from_secs_f64(answer_timeout_s),
             state: Mutex::new(State {
                 child,
@@ -184,6 +186,12 @@ impl ExecLearner {
             }),
             failure: OnceLock::new(),
         })
+    }
+
+    /// Its program's whole stderr, as it is written: kept by the host for the
+    /// trial's folder.
+    pub fn stderr(&self) -> SharedStderr {
+        std::sync::Arc::clone(&self.stderr)
     }
 
     /// Records why the learner failed (the first reason stands).
