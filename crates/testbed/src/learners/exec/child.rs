@@ -11,6 +11,10 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError};
 use std::sync::{Arc, Mutex, Once};
 use std::time::{Duration, Instant};
 
+/// The longest line a child may write to stdout, bytes: past it the line is
+/// a fault, and no more is read (memory stays bounded whatever it writes).
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
 /// How many of the child's last stderr lines an error quotes.
 const STDERR_LINES: usize = 12;
 
@@ -94,6 +98,50 @@ pub enum Fault {
     Gone(Option<String>),
     /// No line within the time limit, s.
     Silent(f64),
+    /// It wrote something that is not a line of text: why.
+    NotALine(String),
+}
+
+/// The lines of `from` sent to `to` as they come: each a line of UTF-8 text
+/// (its end of line removed), or, once, why what came was not one (too long,
+/// not UTF-8), after which nothing more is read. Reads at most
+/// [`MAX_LINE_BYTES`] + 1 bytes a line.
+fn send_lines(from: impl std::io::Read, to: &mpsc::Sender<Result<String, String>>) {
+    use std::io::Read;
+    let mut reader = BufReader::new(from);
+    loop {
+        let mut line = Vec::new();
+        let limit = u64::try_from(MAX_LINE_BYTES + 1).unwrap_or(u64::MAX);
+        match (&mut reader).take(limit).read_until(b'\n', &mut line) {
+            Ok(0) | Err(_) => return,
+            Ok(_) => {}
+        }
+        let ended = line.last() == Some(&b'\n');
+        if ended {
+            line.pop();
+            if line.last() == Some(&b'\r') {
+                line.pop();
+            }
+        } else if line.len() > MAX_LINE_BYTES {
+            let _ = to.send(Err(format!(
+                "wrote a line of more than {MAX_LINE_BYTES} bytes (a line is one message)"
+            )));
+            return;
+        }
+        let sent = match String::from_utf8(line) {
+            Ok(text) => to.send(Ok(text)),
+            Err(e) => {
+                let _ = to.send(Err(format!(
+                    "wrote a line that is not UTF-8 text (bad byte at {})",
+                    e.utf8_error().valid_up_to()
+                )));
+                return;
+            }
+        };
+        if sent.is_err() {
+            return;
+        }
+    }
 }
 
 /// A running child process and its lines.
@@ -104,7 +152,7 @@ pub struct Child {
     /// may then be another's, and must not be signalled.
     reaped: bool,
     stdin: Option<BufWriter<ChildStdin>>,
-    lines: Receiver<String>,
+    lines: Receiver<Result<String, String>>,
     stderr: Arc<Mutex<VecDeque<String>>>,
     log: SharedStderr,
 }
@@ -138,22 +186,26 @@ impl Child {
         let stdin = process.stdin.take().map(BufWriter::new);
         let (send, lines) = mpsc::channel();
         if let Some(out) = process.stdout.take() {
-            std::thread::spawn(move || {
-                for line in BufReader::new(out).lines() {
-                    let Ok(line) = line else { break };
-                    if send.send(line).is_err() {
-                        break;
-                    }
-                }
-            });
+            std::thread::spawn(move || send_lines(out, &send));
         }
         let stderr = Arc::new(Mutex::new(VecDeque::new()));
         let log = SharedStderr::default();
         if let Some(err) = process.stderr.take() {
             let (tail, whole) = (Arc::clone(&stderr), Arc::clone(&log));
             std::thread::spawn(move || {
-                for line in BufReader::new(err).lines() {
-                    let Ok(line) = line else { break };
+                // In pieces of at most a line's bound: a line without end
+                // cannot take the host's memory.
+                let mut reader = BufReader::new(err);
+                loop {
+                    use std::io::Read;
+                    let mut piece = Vec::new();
+                    let limit = u64::try_from(MAX_LINE_BYTES).unwrap_or(u64::MAX);
+                    match (&mut reader).take(limit).read_until(b'\n', &mut piece) {
+                        Ok(0) | Err(_) => break,
+                        Ok(_) => {}
+                    }
+                    let text = String::from_utf8_lossy(&piece);
+                    let line = text.trim_end_matches(['\n', '\r']).to_string();
                     if let Ok(mut w) = whole.lock() {
                         w.push(&line);
                     }
@@ -203,7 +255,8 @@ impl Child {
             }
         }
         match self.lines.recv_timeout(limit) {
-            Ok(line) => Ok(line),
+            Ok(Ok(line)) => Ok(line),
+            Ok(Err(why)) => Err(Fault::NotALine(why)),
             Err(RecvTimeoutError::Timeout) => Err(Fault::Silent(limit.as_secs_f64())),
             Err(RecvTimeoutError::Disconnected) => Err(Fault::Gone(self.ended())),
         }
@@ -211,7 +264,10 @@ impl Child {
 
     /// A line the child wrote that nobody has asked for yet, if any.
     pub fn unasked(&self) -> Option<String> {
-        self.lines.try_recv().ok()
+        self.lines
+            .try_recv()
+            .ok()
+            .map(|l| l.unwrap_or_else(|why| format!("({why})")))
     }
 
     /// How the child ended, waiting a moment for it (its stdout closed or

@@ -80,8 +80,11 @@ fn read_hello(child: &mut Child) -> Result<protocol::Hello, String> {
 fn fault(f: &Fault, child: &Child, when: &str) -> String {
     let what = match f {
         Fault::Gone(Some(how)) => format!("crashed {when}: it {how}"),
-        Fault::Gone(None) => format!("crashed {when}"),
+        Fault::Gone(None) => format!(
+            "closed its stdout {when}, and had not exited 2 s later (stdout is the protocol's)"
+        ),
         Fault::Silent(s) => format!("did not answer within {s} s {when} (exec.answer_timeout_s)"),
+        Fault::NotALine(why) => format!("{why} {when}"),
     };
     with_stderr(&what, child)
 }
