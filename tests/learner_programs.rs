@@ -399,3 +399,40 @@ fn a_failed_trial_keeps_its_world_its_failure_and_its_learners_stderr() {
         "no models of a failed run"
     );
 }
+
+#[test]
+fn the_conformance_check_passes_a_good_learner_and_names_each_broken_rule() {
+    use testbed::learners::exec::conformance::check;
+    let good = check("exec:python3 examples/learners/quickstart.py", 5.0);
+    assert!(good.iter().all(|r| r.passed), "{good:#?}");
+    assert_eq!(good.len(), 7);
+    let rule = |checks: &[testbed::learners::exec::conformance::RuleCheck], name: &str| {
+        checks
+            .iter()
+            .find(|r| r.rule.contains(name))
+            .cloned()
+            .expect(name)
+    };
+    // Crashing 200 events in: a short exchange passes, the whole trial
+    // fails, quoting how, and what needs a whole trial is not tried.
+    let crash = check(&bad("crash"), 5.0);
+    assert!(rule(&crash, "at their defaults").passed, "{crash:#?}");
+    let long = rule(&crash, "150 s trial");
+    assert!(
+        !long.passed && long.detail.contains("exited with status 3"),
+        "{long:?}"
+    );
+    assert!(!rule(&crash, "both models").passed);
+    // No sensor model ever: every exchange passes but the trial's end.
+    let no_sensor = check(&bad("no_sensor"), 5.0);
+    let end = rule(&no_sensor, "both models");
+    assert!(
+        !end.passed && end.detail.contains("no sensor model"),
+        "{end:?}"
+    );
+    assert!(rule(&no_sensor, "150 s trial").passed);
+    // No hello at all: said, and nothing else tried.
+    let no_hello = check(&bad("no_hello"), 5.0);
+    assert_eq!(no_hello.len(), 1);
+    assert!(!no_hello[0].passed && no_hello[0].detail.contains("giving up before hello"));
+}

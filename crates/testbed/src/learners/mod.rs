@@ -19,7 +19,7 @@ pub use scasm::declaration::BoxedLearner;
 
 /// The shared settings' values in `scenario`, and the command scale, as a
 /// program is told them.
-fn shared_values(scenario: &Scenario) -> Vec<(&'static str, f64)> {
+pub(crate) fn shared_values(scenario: &Scenario) -> Vec<(&'static str, f64)> {
     let mut out: Vec<(&str, f64)> = SHARED
         .iter()
         .map(|s| (s.key, (s.get)(&scenario.learner)))

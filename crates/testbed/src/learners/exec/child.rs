@@ -325,8 +325,8 @@ impl Child {
     }
 
     /// Sends `last`, closes the child's stdin and waits a moment for it to
-    /// exit, then kills it.
-    pub fn finish(&mut self, last: &str) {
+    /// exit, then kills it (its whole group); whether it had exited by itself.
+    pub fn finish(&mut self, last: &str) -> bool {
         let _ = self.send(last);
         if let Some(mut stdin) = self.stdin.take() {
             let _ = stdin.flush();
@@ -335,7 +335,9 @@ impl Child {
         while !self.has_exited() && Instant::now() < until {
             std::thread::sleep(Duration::from_millis(2));
         }
+        let exited = self.reaped || self.has_exited();
         self.end_group();
+        exited
     }
 
     /// Kills the child's whole group (what it started too, even after the

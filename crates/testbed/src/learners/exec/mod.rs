@@ -3,6 +3,7 @@
 //! learner that drives one.
 
 pub mod child;
+pub mod conformance;
 pub mod program;
 pub mod protocol;
 

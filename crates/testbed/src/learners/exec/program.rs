@@ -44,7 +44,7 @@ impl Program {
             .map_err(|e| format!("`{spec}`: cannot split the command into words: {e}"))?;
         let mut child = Child::spawn(&words).map_err(|e| format!("`{spec}`: {e}"))?;
         let hello = read_hello(&mut child).map_err(|e| format!("`{spec}` {e}"))?;
-        child.finish(protocol::END);
+        let _ = child.finish(protocol::END);
         Ok(Self {
             spec: spec.into(),
             words,
@@ -300,6 +300,16 @@ impl CalibrationLearner for ExecLearner {
 
     fn failure(&self) -> Option<&str> {
         self.failure.get().map(String::as_str)
+    }
+}
+
+impl ExecLearner {
+    /// Ends the trial: sends `end`; whether the program then exited by
+    /// itself within 2 s (it is killed either way).
+    pub fn end(mut self) -> bool {
+        self.state
+            .get_mut()
+            .is_ok_and(|state| state.child.finish(protocol::END))
     }
 }
 
