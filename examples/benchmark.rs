@@ -142,6 +142,7 @@ fn main() -> Result<()> {
     };
     bench.sort(&mut entries);
     benchmark::write_leaderboard_csv(&out.join("leaderboard.csv"), &entries)?;
+    output::write_json(&out.join("summary.json"), &bench.summary_json(&entries))?;
     println!("{}", report::leaderboard::write(&out, &bench, &entries)?);
     println!(
         "\nwhole benchmark {:.0} s wall; results in {}",

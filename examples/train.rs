@@ -46,7 +46,7 @@ struct Args {
 fn main() -> Result<()> {
     let args: Args = scasm_testbed::args::parse();
     if scasm_testbed::list_learners_if_asked(args.trials.learner.as_deref())
-        || scasm_testbed::list_settings_if_asked(&args.scenario.set)
+        || scasm_testbed::list_settings_if_asked(&args.scenario.set, args.trials.learner.as_deref())
     {
         return Ok(());
     }

@@ -63,6 +63,9 @@ FILES = {
     "replay/trial-<seed>/errors_over_time.csv": "as train's",
     "replay/trial-<seed>/models.json": "as train's",
     "benchmark/leaderboard.csv": "a row per learner, scenario and seed",
+    "benchmark/summary.json": "the seeds and scenarios; each learner as named (`spec`: a program's command too) "
+                              "with the settings it ran with on each scenario; and per learner and scenario "
+                              "(`cells[]`) the trial counts and every figure's mean, std, median, p10, p90 and n",
     "benchmark/leaderboard.md": "the leaderboard's table per learner and scenario, as Markdown",
     "benchmark/index.html": "the table and the figures of the ratios",
     "benchmark/leaderboard-*.png": "each learner's median error over the best polynomial's and its p10-p90, per scenario (also .svg)",

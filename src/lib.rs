@@ -204,12 +204,34 @@ pub fn list_learners_if_asked(learner: Option<&str>) -> bool {
 }
 
 /// Prints every setting, its type, default and what it does, if `--set list`
-/// was given; says whether it did.
-pub fn list_settings_if_asked(set: &[String]) -> bool {
+/// was given; says whether it did. With a learner program named
+/// (`--learner exec:...`), its own settings too, as its hello declares them.
+pub fn list_settings_if_asked(set: &[String], learner: Option<&str>) -> bool {
     if !set.iter().any(|s| s == "list") {
         return false;
     }
     print!("{}", testbed::scenario::describe_settings());
+    if let Some(spec) = learner.filter(|l| l.starts_with(testbed::learners::exec::PREFIX)) {
+        match testbed::learners::resolve(spec) {
+            Ok(program) => {
+                for s in program.settings() {
+                    println!(
+                        "{:<26} {:<7} {:<14} {} (in {})",
+                        format!("learner.{}.{}", program.name(), s.key),
+                        if s.kind == scasm::declaration::Kind::Count {
+                            "count"
+                        } else {
+                            "number"
+                        },
+                        s.default,
+                        s.doc,
+                        s.range()
+                    );
+                }
+            }
+            Err(e) => eprintln!("{e}"),
+        }
+    }
     true
 }
 

@@ -1,38 +1,46 @@
 """Calibration learners in Python for the SCASM testbed.
 
-A learner is a class with ``handle(event)`` and four queries (``action_model``,
-``sensor_model``, ``x_a``, ``x_s``); :func:`run` speaks the testbed's learner
-protocol (``book/src/learner/protocol.md``, version 1) for it on stdin and stdout::
+A learner is a subclass of :class:`Learner` with ``handle(event)`` and four
+queries (``action_model``, ``sensor_model``, ``x_a``, ``x_s``); :func:`run`
+speaks the testbed's learner protocol (``book/src/learner/protocol.md``,
+version 1) for it on stdin and stdout::
 
-    from scasm_testbed import Learner, Setting, run
+    from scasm_testbed import Command, Event, Learner, Setting, run
 
     class Mine(Learner):
         name = "mine"
         about = "what it is, in a line"
         settings = [Setting("gain", 0.5, min=0.0, max=1.0, doc="how much")]
 
-        def handle(self, event): ...
-        def action_model(self): return None   # or [c0, c1, ...], lowest power first
-        def sensor_model(self): return None
+        def handle(self, event: Event) -> None: ...
+        def action_model(self) -> Coefficients: return [0.0, 1.0]   # or None: not yet
+        def sensor_model(self) -> Coefficients: return None
 
     if __name__ == "__main__":
         run(Mine)
 
-and the testbed runs it with ``--learner 'exec:python3 mine.py'``. Only the
-standard library is needed. Logs go to stderr: stdout is the protocol's.
+and the testbed runs it with ``--learner 'exec:python3 mine.py'``. A trial
+must end with both models. Only the standard library is needed. Logs go to
+stderr: stdout is the protocol's. :mod:`scasm_testbed.testing` replays a
+recorded trial to a learner in-process, for its tests.
 """
 
+import abc
 import json
 import math
 import sys
 import traceback
 from dataclasses import dataclass
+from typing import IO, Any, Dict, List, Mapping, Optional, Sequence, Type, Union
 
 __version__ = "0.2.0"
 """The package's version: the testbed's, which it ships with."""
 
 PROTOCOL = 1
 """The protocol version this package speaks."""
+
+Coefficients = Optional[Sequence[float]]
+"""A model: polynomial coefficients, lowest power first, or None for "not yet"."""
 
 
 @dataclass(frozen=True)
@@ -41,13 +49,14 @@ class Setting:
 
     key: str
     default: float
-    min: float = None
-    max: float = None
+    min: Optional[float] = None
+    max: Optional[float] = None
     integer: bool = False
     doc: str = ""
 
-    def declaration(self):
-        out = {"key": self.key, "default": self.default, "integer": self.integer, "doc": self.doc}
+    def declaration(self) -> Dict[str, Any]:
+        """The setting as the hello declares it."""
+        out: Dict[str, Any] = {"key": self.key, "default": self.default, "integer": self.integer, "doc": self.doc}
         if self.min is not None:
             out["min"] = self.min
         if self.max is not None:
@@ -72,47 +81,83 @@ class Reading:
     obs_px: float
 
 
-class Learner:
+Event = Union[Command, Reading]
+"""What the host tells a learner: a command in force, or a reading."""
+
+
+@dataclass(frozen=True)
+class Models:
+    """A learner's answer to a query."""
+
+    action: Optional[List[float]]
+    sensor: Optional[List[float]]
+    x_a: Optional[float]
+    x_s: Optional[float]
+
+
+class Learner(abc.ABC):
     """A calibration learner. Subclasses set ``name`` (letters, digits, ``-``
-    and ``_``), ``about`` and ``settings``, and implement :meth:`handle` and
-    the queries. After construction the host's settings arrive in
-    :meth:`configure`: ``self.own`` (its own settings by key) and
-    ``self.shared`` (``gamma``, ``beta``, ``t_start``, ``sensor_degree``,
-    ``action_degree``, ``sensor_window``, ``forward_degree``,
-    ``action_prior``, ``action_highpass``, ``action_robust``,
-    ``command_scale``)."""
+    and ``_``), ``about`` and ``settings``, and implement :meth:`handle` and the
+    queries.
 
-    name = "python-learner"
-    about = ""
-    settings = []
+    Before any event the host's settings arrive: ``self.own`` (its own settings
+    by key) and ``self.shared`` (``gamma``, ``beta``, ``t_start``,
+    ``sensor_degree``, ``action_degree``, ``sensor_window``, ``forward_degree``,
+    ``action_prior``, ``action_highpass``, ``action_robust``, ``command_scale``)
+    are set by the package, and then :meth:`configure` is called: override it
+    to set up from them (there is no need to call ``super().configure``)."""
 
-    def configure(self, own, shared):
-        self.own = own
-        self.shared = shared
+    name: str = "python-learner"
+    about: str = ""
+    settings: Sequence[Setting] = ()
 
-    def handle(self, event):
+    def __init__(self) -> None:
+        self.own: Dict[str, float] = {s.key: s.default for s in self.settings}
+        self.shared: Dict[str, float] = {}
+
+    def configure(self, own: Mapping[str, float], shared: Mapping[str, float]) -> None:
+        """Called once, before any event, with the settings in force (also
+        in ``self.own`` and ``self.shared``)."""
+
+    @abc.abstractmethod
+    def handle(self, event: Event) -> None:
         """Takes a :class:`Command` or a :class:`Reading`; raise to refuse it
         (the trial then fails with the message)."""
-        raise NotImplementedError
 
-    def action_model(self):
+    def action_model(self) -> Coefficients:
         """Command -> location units per second: coefficients, lowest power first, or None."""
         return None
 
-    def sensor_model(self):
+    def sensor_model(self) -> Coefficients:
         """Pixels -> location units: coefficients, lowest power first, or None."""
         return None
 
-    def x_a(self):
+    def x_a(self) -> Optional[float]:
         """The dead-reckoned location, or None."""
         return None
 
-    def x_s(self):
+    def x_s(self) -> Optional[float]:
         """The location the sensor model gave for the latest reading, or None."""
         return None
 
+    def set_up(self, own: Mapping[str, float], shared: Mapping[str, float]) -> None:
+        """Keeps the settings in force (its own over their defaults) and calls
+        :meth:`configure`: what the host's ``settings`` message does."""
+        self.own = {**{s.key: s.default for s in self.settings}, **own}
+        self.shared = dict(shared)
+        self.configure(self.own, self.shared)
 
-def _finite_list(coeffs):
+    def models(self) -> Models:
+        """Its answer to a query, checked: finite numbers, or None."""
+        return Models(
+            _finite_list(self.action_model()),
+            _finite_list(self.sensor_model()),
+            _finite(self.x_a()),
+            _finite(self.x_s()),
+        )
+
+
+def _finite_list(coeffs: Coefficients) -> Optional[List[float]]:
     if coeffs is None:
         return None
     out = [float(c) for c in coeffs]
@@ -121,7 +166,7 @@ def _finite_list(coeffs):
     return out
 
 
-def _finite(x):
+def _finite(x: Optional[float]) -> Optional[float]:
     if x is None:
         return None
     x = float(x)
@@ -130,25 +175,30 @@ def _finite(x):
     return x
 
 
-def run(learner_class, stdin=None, stdout=None):
-    """Speaks the protocol for a learner of ``learner_class`` until the host ends the trial."""
-    stdin = stdin or sys.stdin
-    stdout = stdout or sys.stdout
-
-    def send(message):
-        stdout.write(json.dumps(message, allow_nan=False) + "\n")
-        stdout.flush()
-
-    learner = learner_class()
-    send({
+def hello(learner_class: Type[Learner]) -> Dict[str, Any]:
+    """The hello a learner of ``learner_class`` says."""
+    return {
         "type": "hello",
         "protocol": PROTOCOL,
-        "name": learner.name,
-        "about": learner.about,
-        "settings": [s.declaration() for s in learner.settings],
-    })
+        "name": learner_class.name,
+        "about": learner_class.about,
+        "settings": [s.declaration() for s in learner_class.settings],
+    }
+
+
+def run(learner_class: Type[Learner], stdin: Optional[IO[str]] = None, stdout: Optional[IO[str]] = None) -> None:
+    """Speaks the protocol for a learner of ``learner_class`` until the host ends the trial."""
+    inp = stdin or sys.stdin
+    out = stdout or sys.stdout
+
+    def send(message: Dict[str, Any]) -> None:
+        out.write(json.dumps(message, allow_nan=False) + "\n")
+        out.flush()
+
+    learner = learner_class()
+    send(hello(learner_class))
     try:
-        for line in iter(stdin.readline, ""):
+        for line in iter(inp.readline, ""):
             m = json.loads(line)
             kind = m["type"]
             if kind == "command":
@@ -156,17 +206,12 @@ def run(learner_class, stdin=None, stdout=None):
             elif kind == "reading":
                 learner.handle(Reading(m["t_s"], m["obs_px"]))
             elif kind == "query":
-                send({
-                    "type": "models",
-                    "action": _finite_list(learner.action_model()),
-                    "sensor": _finite_list(learner.sensor_model()),
-                    "x_a": _finite(learner.x_a()),
-                    "x_s": _finite(learner.x_s()),
-                })
+                a = learner.models()
+                send({"type": "models", "action": a.action, "sensor": a.sensor, "x_a": a.x_a, "x_s": a.x_s})
             elif kind == "settings":
                 if m.get("protocol") != PROTOCOL:
                     raise ValueError(f"the host speaks protocol {m.get('protocol')}, this package {PROTOCOL}")
-                learner.configure(m["settings"], m["shared"])
+                learner.set_up(m["settings"], m["shared"])
             elif kind == "end":
                 return
             else:
@@ -178,3 +223,18 @@ def run(learner_class, stdin=None, stdout=None):
         except (OSError, ValueError):
             pass
         sys.exit(1)
+
+
+__all__ = [
+    "Coefficients",
+    "Command",
+    "Event",
+    "Learner",
+    "Models",
+    "PROTOCOL",
+    "Reading",
+    "Setting",
+    "__version__",
+    "hello",
+    "run",
+]

@@ -72,6 +72,51 @@ impl Benchmark {
         &self.references[&s.scenario.reference_key()]
     }
 
+    /// `summary.json` of a benchmark: the seeds, each learner as named (a
+    /// program's command too) with the settings it ran with on each
+    /// scenario, and per (learner, scenario) the counts of trials and the
+    /// statistics of every figure over the ok ones.
+    pub fn summary_json(&self, entries: &[Entry]) -> serde_json::Value {
+        let learners: Vec<serde_json::Value> = self
+            .specs
+            .iter()
+            .zip(&self.learners)
+            .map(|(spec, name)| {
+                let on: serde_json::Map<String, serde_json::Value> = self
+                    .suite
+                    .iter()
+                    .map(|s| (s.name.clone(), learners::parameters(spec, &s.scenario)))
+                    .collect();
+                serde_json::json!({"name": name, "spec": spec, "parameters": on})
+            })
+            .collect();
+        let cells: Vec<serde_json::Value> =
+            crate::benchmark::cells(entries, &self.learners, &self.names())
+                .into_iter()
+                .map(|c| {
+                    let a = &c.aggregate;
+                    let mut cell = serde_json::Map::new();
+                    cell.insert("learner".into(), c.learner.clone().into());
+                    cell.insert("scenario".into(), c.scenario.clone().into());
+                    cell.insert("trials".into(), a.trials.into());
+                    cell.insert("trials_ok".into(), a.ok().into());
+                    cell.insert("trials_failed".into(), a.failed.len().into());
+                    cell.insert(
+                        "trials_worse_than_start".into(),
+                        a.worse_than_start.len().into(),
+                    );
+                    cell.extend(a.statistics_json());
+                    serde_json::Value::Object(cell)
+                })
+                .collect();
+        serde_json::json!({
+            "seeds": self.seeds,
+            "scenarios": self.names(),
+            "learners": learners,
+            "cells": cells,
+        })
+    }
+
     /// The scenarios' names, in order.
     pub fn names(&self) -> Vec<String> {
         self.suite.iter().map(|s| s.name.clone()).collect()
