@@ -185,9 +185,10 @@ impl RobotDescription {
     /// Reads and checks a URDF file.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, RobotError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| RobotError::Io {
-            path: path.display().to_string(),
-            source,
+        let text = crate::files::read_text(path, crate::files::URDF_LIMIT).map_err(|e| {
+            RobotError::Parse {
+                reason: e.to_string(),
+            }
         })?;
         let urdf = parse(&text)?;
         let map = RobotMap::conventional(&urdf)?;
@@ -319,7 +320,10 @@ impl RobotDescription {
     }
 }
 
-fn parse(text: &str) -> Result<Robot, RobotError> {
+/// URDF text parsed (by urdf-rs, after its nesting is checked: see
+/// [`crate::files::check_xml`]).
+pub(crate) fn parse(text: &str) -> Result<Robot, RobotError> {
+    crate::files::check_xml(text).map_err(|reason| RobotError::Parse { reason })?;
     urdf_rs::read_from_string(text).map_err(|e| RobotError::Parse {
         reason: e.to_string(),
     })

@@ -18,6 +18,7 @@ pub mod config;
 pub mod description;
 pub mod discover;
 pub mod error;
+pub mod files;
 pub mod fold;
 pub mod gait;
 pub mod heading;

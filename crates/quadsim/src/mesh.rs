@@ -155,12 +155,15 @@ type Hull = Result<(SharedShape, Pose), MeshConverterError>;
 /// it: its bytes 80-84 are text, a count of at least 0x20202020 triangles,
 /// which would make the file some 27 GB.
 fn read(file: &Path, scale: Vector) -> Result<Vec<Hull>, String> {
+    // Whatever reads it: a regular file of bounded size.
+    crate::files::check(file, crate::files::MESH_LIMIT).map_err(|e| e.to_string())?;
     let is_stl = file
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     if is_stl {
         // Read once, and parsed here whether ASCII or binary.
-        let mut bytes = std::fs::read(file).map_err(|e| e.to_string())?;
+        let mut bytes =
+            crate::files::read(file, crate::files::MESH_LIMIT).map_err(|e| e.to_string())?;
         if is_binary_stl(&bytes) {
             // A header of zeros, so the parser does not look for ASCII.
             bytes[..80].fill(0);

@@ -284,9 +284,13 @@ impl RobotFile {
     /// Reads a robot file and the URDF it names (relative to the file).
     pub fn from_file(path: &Path) -> Result<Self, RobotError> {
         let label = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| RobotError::RobotFile {
+        let text = crate::files::read_text(
+            path,
+            crate::files::SETTINGS_LIMIT.max(crate::files::URDF_LIMIT),
+        )
+        .map_err(|e| RobotError::RobotFile {
             file: label.clone(),
-            reason: format!("cannot read it: {e}"),
+            reason: e.to_string(),
         })?;
         if text.trim_start().starts_with('<') {
             return Self::from_bare_urdf(path, text);
@@ -296,10 +300,13 @@ impl RobotFile {
             .parent()
             .unwrap_or_else(|| Path::new(""))
             .join(&file.urdf);
-        let urdf_text = std::fs::read_to_string(&urdf_path).map_err(|e| RobotError::RobotFile {
-            file: label.clone(),
-            reason: format!("cannot read its URDF {}: {e}", urdf_path.display()),
-        })?;
+        let urdf_text =
+            crate::files::read_text(&urdf_path, crate::files::URDF_LIMIT).map_err(|e| {
+                RobotError::RobotFile {
+                    file: label.clone(),
+                    reason: format!("its URDF: {e}"),
+                }
+            })?;
         Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)
     }
 
@@ -312,12 +319,19 @@ impl RobotFile {
             file: label.clone(),
             reason: e.to_string(),
         };
-        let urdf = urdf_rs::read_from_string(&urdf_text).map_err(|e| {
-            in_file(RobotError::Parse {
-                reason: e.to_string(),
-            })
-        })?;
+        let urdf = crate::description::parse(&urdf_text).map_err(in_file)?;
         let map = crate::discover::discover(&urdf).map_err(in_file)?;
+        // Checked here, where the user's URDF is named: the robot file below
+        // is the project's own writing, and TOML has no NaN to write.
+        let camera = &map.camera;
+        if camera.xyz.iter().chain(&camera.rpy).any(|v| !v.is_finite()) {
+            return Err(in_file(RobotError::BadCamera {
+                reason: format!(
+                    "its camera joint's origin {:?} {:?} is not finite",
+                    camera.xyz, camera.rpy
+                ),
+            }));
+        }
         let file_name = path
             .file_name()
             .map_or_else(|| label.clone(), |n| n.to_string_lossy().into_owned());

@@ -191,7 +191,14 @@ fn rows(path: &Path, header: &[&str]) -> Result<Vec<(usize, Vec<String>)>, Datas
 /// agree (same frames, times in order, finite numbers).
 pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
     let meta_path = dir.join("dataset.json");
-    let text = std::fs::read_to_string(&meta_path).map_err(io_error(&meta_path))?;
+    let text =
+        quadsim::files::read_text(&meta_path, quadsim::files::SETTINGS_LIMIT).map_err(|e| {
+            DatasetError::Malformed {
+                path: meta_path.display().to_string(),
+                line: 0,
+                reason: e.to_string(),
+            }
+        })?;
     let meta: DatasetMeta = serde_json::from_str(&text).map_err(|e| DatasetError::Malformed {
         path: meta_path.display().to_string(),
         line: e.line(),

@@ -56,11 +56,13 @@ pub struct CsvError {
 }
 
 /// Reads a CSV file whole (by the `csv` crate: quoted cells may hold commas,
-/// quotes and line breaks). Every row must have as many cells as the header;
+/// quotes and line breaks), a regular file of at most
+/// [`quadsim::files::TABLE_LIMIT`] bytes. Every row must have as many cells as the header;
 /// blank lines are skipped. Errors name the line.
 pub fn read_csv(path: &Path) -> Result<CsvTable, CsvError> {
     let whole = |reason: String| CsvError { line: 0, reason };
-    let file = std::fs::File::open(path).map_err(|e| whole(e.to_string()))?;
+    let file = quadsim::files::open(path, quadsim::files::TABLE_LIMIT)
+        .map_err(|e| whole(e.to_string()))?;
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)

@@ -277,7 +277,7 @@ pub fn measured_world(
     let key = key(scenario);
     let path = cache_dir.map(|d| d.join(format!("reference-{key}.json")));
     if let Some(p) = &path {
-        let cached = std::fs::read_to_string(p)
+        let cached = quadsim::files::read_text(p, quadsim::files::SETTINGS_LIMIT)
             .ok()
             .and_then(|text| serde_json::from_str::<CachedReference>(&text).ok());
         if let Some(c) = cached.filter(|c| c.key == key) {

@@ -37,10 +37,13 @@ impl Scenario {
             scenario.set(&format!("robot.urdf={}", path.display()))?;
         }
         if let Some(path) = file {
-            let text = std::fs::read_to_string(path).map_err(|e| SettingError::File {
-                file: path.display().to_string(),
-                reason: e.to_string(),
-            })?;
+            let text =
+                quadsim::files::read_text(path, quadsim::files::SETTINGS_LIMIT).map_err(|e| {
+                    SettingError::File {
+                        file: path.display().to_string(),
+                        reason: e.to_string(),
+                    }
+                })?;
             scenario.apply_toml(&path.display().to_string(), &text)?;
         }
         // The robot first, then the trial (a blanked interval is checked
