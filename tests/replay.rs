@@ -162,6 +162,28 @@ fn a_damaged_dataset_is_refused_naming_file_and_line() {
         &|t| t.replacen("\"format_version\": 2", "\"format_version\": 99", 1),
         "format version 99",
     );
+    // issue 61: a reading no camera gives, and truth rows out of time order.
+    damage(
+        "damaged-reading",
+        "events.csv",
+        &|t| {
+            let mut lines: Vec<String> = t.lines().map(String::from).collect();
+            let cells: Vec<&str> = lines[7].split(',').collect();
+            lines[7] = format!("{},{},{},-1", cells[0], cells[1], cells[2]);
+            lines.join("\n")
+        },
+        "obs_px -1 is not a reading",
+    );
+    damage(
+        "damaged-truth-order",
+        "truth.csv",
+        &|t| {
+            let mut lines: Vec<String> = t.lines().map(String::from).collect();
+            lines.swap(3, 4);
+            lines.join("\n")
+        },
+        "truth rows are out of order",
+    );
     let dir = written("damaged-missing");
     std::fs::remove_file(dir.join("truth.csv")).expect("remove");
     let e = dataset::read(&dir).expect_err("missing file").to_string();

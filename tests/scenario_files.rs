@@ -379,3 +379,30 @@ fn the_walk_engines_pitch_gain_is_a_setting_checked_and_written_back() {
         &["-0.1", "1.5"],
     );
 }
+
+#[test]
+fn settings_a_run_cannot_use_are_refused_with_their_range() {
+    // issue 61: each of these used to load, and a run then took forever or
+    // learned from nothing.
+    for (setting, range) in [
+        ("physics.dt=1e-300", "[0.0001, 0.01] s"),
+        ("camera.frame_period_s=1e9", "[physics.dt, 1] s"),
+        (
+            "trial.seeds=0..18446744073709551615",
+            "a run takes at most 1000000",
+        ),
+    ] {
+        let e = Scenario::from_settings(None, None, &[setting.to_string()])
+            .expect_err(setting)
+            .to_string();
+        assert!(e.contains(range), "{setting}: {e}");
+    }
+    // A robot path that is not a regular file is refused at once.
+    #[cfg(unix)]
+    {
+        let e = Scenario::from_settings(None, None, &["robot.file=/dev/zero".into()])
+            .expect_err("a device")
+            .to_string();
+        assert!(e.contains("a character device"), "{e}");
+    }
+}

@@ -123,8 +123,8 @@ impl SimConfig {
             (
                 "physics.dt",
                 self.dt_s,
-                self.dt_s > 0.0 && self.dt_s <= 0.01,
-                "in (0, 0.01] s",
+                (1e-4..=0.01).contains(&self.dt_s),
+                "in [0.0001, 0.01] s (finer is days of computing a trial)",
             ),
             (
                 "physics.solver_iterations",
@@ -233,8 +233,8 @@ impl SimConfig {
             (
                 "camera.frame_period_s",
                 c.frame_period_s,
-                c.frame_period_s >= self.dt_s,
-                ">= physics.dt",
+                c.frame_period_s >= self.dt_s && c.frame_period_s <= 1.0,
+                "in [physics.dt, 1] s (a learner needs readings)",
             ),
         ]
     }

@@ -223,8 +223,10 @@ impl RobotDescription {
     /// Checks a parsed URDF with the legs and camera `map` names, its
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
+        crate::checks::values(&urdf)?;
         let root_link = check_tree(&urdf)?;
         let urdf = crate::fold::fold_degenerate_links(&urdf);
+        crate::checks::rigid_inertia(&urdf)?;
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;

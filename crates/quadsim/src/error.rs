@@ -12,6 +12,15 @@ pub enum RobotError {
         /// Why.
         source: std::io::Error,
     },
+    /// A number of the URDF that no physical robot has (see
+    /// [`crate::checks`]).
+    #[error("URDF {element}: {reason}")]
+    BadValue {
+        /// The element: `link `NAME`` or `joint `NAME``.
+        element: String,
+        /// The value, and what it must be.
+        reason: String,
+    },
     /// The text is not valid URDF.
     #[error("malformed URDF: {reason}")]
     Parse {

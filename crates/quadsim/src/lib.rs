@@ -14,6 +14,7 @@
 pub mod beacon;
 pub mod cadence;
 pub mod camera;
+pub mod checks;
 pub mod config;
 pub mod description;
 pub mod discover;

@@ -477,8 +477,9 @@ impl RobotFile {
             reason,
         };
         if let Some(c) = self.gait.cadence {
-            if !(c > 0.0 && c <= 2.0) {
-                return Err(bad(format!("gait.cadence must be in (0, 2], got {c}")));
+            // Below 0.1 a stride takes ten times the scaled gait's: no walk.
+            if !(0.1..=2.0).contains(&c) {
+                return Err(bad(format!("gait.cadence must be in [0.1, 2], got {c}")));
             }
         }
         let config = self.sim_config();

@@ -263,6 +263,14 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
             "" => None,
             cell => Some(number(&events_path, *line, "obs_px", cell)?),
         };
+        // A reading is the beacon's height in the image: more than nothing.
+        if let Some(obs) = obs_px.filter(|o| *o <= 0.0) {
+            return Err(bad(
+                &events_path,
+                *line,
+                format!("obs_px {obs} is not a reading (a height in the image is > 0 px)"),
+            ));
+        }
         if dt_s <= 0.0 || t_s < clock_s - 1e-9 {
             return Err(bad(
                 &events_path,
@@ -271,6 +279,18 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
             ));
         }
         clock_s = t_s + dt_s;
+        // Each truth row is the state at the end of its event row's frame.
+        let truth_t_s = number(&truth_path, *tline, "t_s", &t[0])?;
+        if (truth_t_s - clock_s).abs() > 1e-6 * clock_s.abs().max(1.0) {
+            return Err(bad(
+                &truth_path,
+                *tline,
+                format!(
+                    "t_s {truth_t_s} is not the end of its frame in events.csv ({clock_s} s): \
+                     the truth rows are out of order or not this recording's"
+                ),
+            ));
+        }
         let flag = |column: usize, name: &str| match t.get(column).map(String::as_str) {
             None => Ok(false),
             Some("1") => Ok(true),

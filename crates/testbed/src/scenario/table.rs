@@ -101,7 +101,7 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "trial.seeds",
         kind: Kind::Text,
         doc: "the seeds of a run's trials, A..B (B excluded)",
-        range: Some("A..B with A < B"),
+        range: Some("A..B with A < B, at most 1,000,000 seeds"),
         set: |s, v| {
             s.seeds = parse_seeds(v)?;
             Ok(())
@@ -448,7 +448,11 @@ pub(crate) fn unknown(key: &str) -> SettingError {
 }
 
 /// The robot of a URDF file.
-/// Seeds written `A..B` (B excluded, at least one seed).
+/// The most seeds one run may take: a million trials of 150 s is some days of
+/// a large cluster's time.
+pub const MAX_SEEDS: u64 = 1_000_000;
+
+/// Seeds written `A..B` (B excluded, at least one and at most [`MAX_SEEDS`]).
 pub fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
     let (a, b) = text
         .split_once("..")
@@ -461,6 +465,12 @@ pub fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
     let (a, b) = (parse(a)?, parse(b)?);
     if a >= b {
         return Err(format!("`{text}` holds no seed"));
+    }
+    if b - a > MAX_SEEDS {
+        return Err(format!(
+            "`{text}` holds {} seeds: a run takes at most {MAX_SEEDS} (split it into several)",
+            b - a
+        ));
     }
     Ok((a, b))
 }
