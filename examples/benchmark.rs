@@ -53,6 +53,11 @@ struct Args {
     /// of running (with the same --learners, --scenarios and --seeds).
     #[arg(long, num_args = 1..)]
     merge: Vec<PathBuf>,
+    /// Print the whole leaderboard (medians, tails, floors: about 250
+    /// columns), as leaderboard.md and index.html hold it; by default a
+    /// table that fits 100 columns.
+    #[arg(long)]
+    wide: bool,
 }
 
 fn main() -> Result<()> {
@@ -143,7 +148,10 @@ fn main() -> Result<()> {
     bench.sort(&mut entries);
     benchmark::write_leaderboard_csv(&out.join("leaderboard.csv"), &entries)?;
     output::write_json(&out.join("summary.json"), &bench.summary_json(&entries))?;
-    println!("{}", report::leaderboard::write(&out, &bench, &entries)?);
+    println!(
+        "{}",
+        report::leaderboard::write(&out, &bench, &entries, args.wide)?
+    );
     println!(
         "\nwhole benchmark {:.0} s wall; results in {}",
         started.elapsed().as_secs_f64(),

@@ -188,9 +188,10 @@ fn main() -> Result<()> {
     )?;
     bar.finish();
     write_outputs(&results, &args.out)?;
+    let summary = report::sweep::describe(&results, velocity_range.unwrap_or(600.0), &base.learner);
     print!(
         "{}",
-        report::sweep::describe(&results, velocity_range.unwrap_or(600.0), &base.learner)
+        report::table::wrap(&summary, report::table::CONSOLE_COLUMNS)
     );
     println!("results in {}", args.out.display());
     Ok(())

@@ -14,7 +14,12 @@ use crate::{spread, table};
 /// Writes `leaderboard.md`, the two spread figures and `index.html` in `out`
 /// for `entries` of `bench`; returns what the console shows (the table and
 /// the notes).
-pub fn write(out: &Path, bench: &Benchmark, entries: &[Entry]) -> Result<String, ReportError> {
+pub fn write(
+    out: &Path,
+    bench: &Benchmark,
+    entries: &[Entry],
+    wide: bool,
+) -> Result<String, ReportError> {
     let names = bench.names();
     let cells = benchmark::cells(entries, &bench.learners, &names);
     let (header, rows) = benchmark::summary_table(&cells);
@@ -100,11 +105,19 @@ pub fn write(out: &Path, bench: &Benchmark, entries: &[Entry]) -> Result<String,
                 .to_string(),
         ),
     ];
-    let console = format!(
-        "\n{}\n{}",
-        table::text(&header, &rows),
-        notes[1..].join("\n")
-    );
+    let console = if wide {
+        format!(
+            "\n{}\n{}",
+            table::text(&header, &rows),
+            notes[1..].join("\n")
+        )
+    } else {
+        format!(
+            "\n{}\n{}",
+            compact(&cells),
+            table::wrap(&notes[1..].join("\n"), table::CONSOLE_COLUMNS)
+        )
+    };
     Page {
         title: "Learners side by side".into(),
         paragraphs: notes,
@@ -114,4 +127,41 @@ pub fn write(out: &Path, bench: &Benchmark, entries: &[Entry]) -> Result<String,
     }
     .write(&out.join("index.html"))?;
     Ok(console)
+}
+
+/// The leaderboard narrow enough for a terminal: per scenario and learner,
+/// the mean errors and their ratios to the best polynomials, the consistency,
+/// and the trials worse than their start and ok.
+fn compact(cells: &[benchmark::Cell]) -> String {
+    let header = [
+        "scenario",
+        "learner",
+        "action mm/s",
+        "/ best",
+        "sensor mm",
+        "/ best",
+        "consistency",
+        "worse",
+        "ok",
+    ]
+    .map(String::from)
+    .to_vec();
+    let rows: Vec<Vec<String>> = cells
+        .iter()
+        .map(|c| {
+            let (a, m) = (&c.aggregate, &c.aggregate.mean);
+            vec![
+                c.scenario.clone(),
+                c.learner.clone(),
+                format!("{:.1}", m.action_rmse_mm_s),
+                format!("{:.2}x", c.action_ratio()),
+                format!("{:.1}", m.sensor_rmse_mm),
+                format!("{:.2}x", c.sensor_ratio()),
+                format!("{:.3}", m.consistency),
+                format!("{}", a.worse_than_start.len()),
+                format!("{}/{}", a.ok(), a.trials),
+            ]
+        })
+        .collect();
+    table::text(&header, &rows)
 }

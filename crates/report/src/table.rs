@@ -173,18 +173,23 @@ pub fn headline(aggregate: &Aggregate, models: &MeasuredModels) -> String {
 }
 
 /// `text` broken at spaces into lines of at most `width` columns (a word
-/// longer than that stands on its own line).
+/// longer than that stands on its own line); a line's indentation is kept,
+/// and its continuation lines get the same.
 pub fn wrap(text: &str, width: usize) -> String {
     let mut out = String::new();
     for paragraph in text.lines() {
-        let mut line = String::new();
+        let indent: String = paragraph
+            .chars()
+            .take_while(|c| c.is_whitespace())
+            .collect();
+        let mut line = indent.clone();
         for word in paragraph.split_whitespace() {
-            if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            let empty = line.len() == indent.len();
+            if !empty && line.chars().count() + 1 + word.chars().count() > width {
                 out += &line;
                 out.push('\n');
-                line.clear();
-            }
-            if !line.is_empty() {
+                line.clone_from(&indent);
+            } else if !empty {
                 line.push(' ');
             }
             line += word;
