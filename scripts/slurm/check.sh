@@ -4,7 +4,7 @@
 #
 # 1. a sweep grid (4 combinations x 2 seeds, 12 s trials) as an array of 3
 #    tasks, then the merge, checked row for row against the unsharded sweep
-#    (but for the wall-clock realtime_factor);
+#    (but for the wall-clock realtime_factor and learner_wall_s);
 # 2. a task killed by `kill -9` mid-run and requeued as the same array
 #    element resumes into its directory and finishes: its rows, and the
 #    merge's, are the unsharded sweep's, none lost and none twice;
@@ -43,18 +43,18 @@ wait_job() {
     fail "job $1 still in the queue after $2 s"
 }
 state() { scontrol show job "$1" | grep -oE 'JobState=[A-Z_]+' | head -n 1 | cut -d= -f2; }
-# The rows of two CSV files equal but for the realtime_factor column.
+# The rows of two CSV files equal but for the wall-clock columns.
 same_rows() {
     python3 - "$1" "$2" << 'PY'
 import csv, sys
 def rows(path):
     r = list(csv.reader(open(path)))
-    drop = [i for i, c in enumerate(r[0]) if c == "realtime_factor"]
+    drop = [i for i, c in enumerate(r[0]) if c in ("realtime_factor", "learner_wall_s")]
     return [[c for i, c in enumerate(row) if i not in drop] for row in r]
 a, b = rows(sys.argv[1]), rows(sys.argv[2])
 if a != b:
     sys.exit(f"{sys.argv[2]}: {len(b) - 1} rows differ from {sys.argv[1]}'s {len(a) - 1}")
-print(f"{sys.argv[2]}: the same {len(a) - 1} rows as {sys.argv[1]} (but for realtime_factor)")
+print(f"{sys.argv[2]}: the same {len(a) - 1} rows as {sys.argv[1]} (but for the wall-clock columns)")
 PY
 }
 rows() { echo $(($(wc -l < "$1") - 1)); }

@@ -85,10 +85,22 @@ pub fn values(urdf: &Robot) -> Result<(), RobotError> {
 /// Checks that each massive link's inertia could be a rigid body's: its
 /// largest principal moment at most the sum of the other two (within
 /// [`TRIANGLE_TOLERANCE`]). Checked on the robot as simulated, after links on
-/// fixed joints are folded into the bodies they ride on (a camera's frame may
-/// carry an inertia no body alone has; the body it is fixed to then does).
+/// fixed joints are folded into the bodies they ride on, and not on a link
+/// that rides on a fixed joint (a camera's frame may carry an inertia no body
+/// alone has; it is part of the body it is fixed to).
 pub fn rigid_inertia(urdf: &Robot) -> Result<(), RobotError> {
-    for link in urdf.links.iter().filter(|l| l.inertial.mass.value > 0.0) {
+    // A link on a fixed joint is part of the body it is fixed to: only that
+    // body as a whole must be a rigid body (a camera's frame often is not).
+    let on_fixed = |name: &str| {
+        urdf.joints
+            .iter()
+            .any(|j| j.child.link == name && matches!(j.joint_type, urdf_rs::JointType::Fixed))
+    };
+    for link in urdf
+        .links
+        .iter()
+        .filter(|l| l.inertial.mass.value > 0.0 && !on_fixed(&l.name))
+    {
         let i = &link.inertial.inertia;
         let [a, b, c] = crate::fold::principal_moments(i);
         let largest = a.max(b).max(c);
