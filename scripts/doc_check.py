@@ -22,7 +22,8 @@ Every fenced block whose language can be run is run, or skipped with a stated re
 - any block after ``<!-- check: skip REASON -->`` is skipped, and the reason printed.
 
 A runnable block with neither a check nor a reason is an error: nothing is left unchecked
-silently. A failing block is reported with its file and line. Exits 1 if any block failed.
+silently. Every relative link must name a file that exists. A failing block or link is reported
+with its file and line. Exits 1 if any failed.
 """
 
 import json
@@ -174,6 +175,19 @@ def scenario(line, text, tmp):
                "the scenario")
 
 
+def broken_links(path):
+    """(line, link) of each relative link in a Markdown file whose target does not exist."""
+    out = []
+    text = open(path, encoding="utf-8").read()
+    for m in re.finditer(r"\]\(([^)#\s]+)(#[^)]*)?\)", text):
+        link = m.group(1)
+        if re.match(r"^[a-z]+:", link):
+            continue
+        if not os.path.exists(os.path.normpath(os.path.join(os.path.dirname(path), link))):
+            out.append((text[: m.start()].count("\n") + 1, link))
+    return out
+
+
 def main():
     files = sys.argv[1:]
     if not files:
@@ -185,6 +199,8 @@ def main():
     with tempfile.TemporaryDirectory(prefix="doc-check-") as tmp:
         for path in files:
             rel = os.path.relpath(path, ROOT)
+            for line, link in broken_links(path):
+                failures.append(f"{rel}:{line}: the link `{link}` names no file")
             for line, lang, marker, text, info in blocks(path):
                 where = f"{rel}:{line}"
                 if lang not in RUNNABLE:
