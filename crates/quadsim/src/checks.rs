@@ -7,6 +7,7 @@
 
 use urdf_rs::{Geometry, Robot};
 
+use crate::description::LegDescription;
 use crate::error::RobotError;
 
 /// The lightest mass a link may have, kg (a milligram): below it a body's
@@ -84,10 +85,10 @@ pub fn values(urdf: &Robot) -> Result<(), RobotError> {
 
 /// Checks that each massive link's inertia could be a rigid body's: its
 /// largest principal moment at most the sum of the other two (within
-/// [`TRIANGLE_TOLERANCE`]). Checked on the robot as simulated, after links on
-/// fixed joints are folded into the bodies they ride on, and not on a link
-/// that rides on a fixed joint (a camera's frame may carry an inertia no body
-/// alone has; it is part of the body it is fixed to).
+/// [`TRIANGLE_TOLERANCE`]). Checked on each link that is a body of its own,
+/// not on one that rides on a fixed joint (a camera's frame or a cover may
+/// carry an inertia no body alone has; it is part of the body it is fixed
+/// to, into which it is folded).
 pub fn rigid_inertia(urdf: &Robot) -> Result<(), RobotError> {
     // A link on a fixed joint is part of the body it is fixed to: only that
     // body as a whole must be a rigid body (a camera's frame often is not).
@@ -116,6 +117,71 @@ pub fn rigid_inertia(urdf: &Robot) -> Result<(), RobotError> {
                 ),
             });
         }
+    }
+    Ok(())
+}
+
+/// Checks that the legs are mapped as a quadruped's are: each leg's joints
+/// its own (no joint in two legs); left legs on the left of the torso (+y)
+/// and right legs on the right, front legs ahead of the rear ones (+x), as
+/// REP 103's body frame has them; and each foot smaller than half its leg (a
+/// foot as large as the leg is no foot).
+pub fn legs(legs: &[LegDescription]) -> Result<(), RobotError> {
+    let bad = |leg: &str, reason: String| RobotError::BadValue {
+        element: format!("leg `{leg}`"),
+        reason,
+    };
+    for (k, a) in legs.iter().enumerate() {
+        for b in &legs[k + 1..] {
+            if let Some(j) = a.joints.iter().find(|j| b.joints.contains(j)) {
+                return Err(bad(
+                    a.name,
+                    format!(
+                        "joint `{j}` is in leg `{}` too: each leg has joints of its own",
+                        b.name
+                    ),
+                ));
+            }
+        }
+        let y = a.hip_in_torso_m[1];
+        let left = a.name.ends_with('l');
+        if (left && y <= 0.0) || (!left && y >= 0.0) {
+            return Err(bad(
+                a.name,
+                format!(
+                    "its hip is at y = {y:.3} m in the torso's frame, on the {} side: a {} leg \
+                     (legs mapped left for right?)",
+                    if y > 0.0 { "left" } else { "right" },
+                    if left { "left" } else { "right" }
+                ),
+            ));
+        }
+        let leg_m = a.thigh_m + a.shank_m;
+        if !(a.foot_radius_m < 0.5 * leg_m) {
+            return Err(bad(
+                a.name,
+                format!(
+                    "its foot's radius, {:.3} m, is not less than half its leg's length, {leg_m:.3} m",
+                    a.foot_radius_m
+                ),
+            ));
+        }
+    }
+    let x = |prefix: char| {
+        legs.iter()
+            .filter(move |l| l.name.starts_with(prefix))
+            .map(|l| l.hip_in_torso_m[0])
+    };
+    let front = x('f').fold(f64::INFINITY, f64::min);
+    let rear = x('h').fold(f64::NEG_INFINITY, f64::max);
+    if !(front > rear) {
+        return Err(bad(
+            "fl",
+            format!(
+                "the front hips (x >= {front:.3} m) are not ahead of the rear ones (x <= {rear:.3} \
+                 m) in the torso's frame (legs mapped front for rear?)"
+            ),
+        ));
     }
     Ok(())
 }

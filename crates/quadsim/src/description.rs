@@ -224,9 +224,9 @@ impl RobotDescription {
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
         crate::checks::values(&urdf)?;
+        crate::checks::rigid_inertia(&urdf)?;
         let root_link = check_tree(&urdf)?;
         let urdf = crate::fold::fold_degenerate_links(&urdf);
-        crate::checks::rigid_inertia(&urdf)?;
         let mut total_mass_kg = 0.0;
         for link in &urdf.links {
             let m = link.inertial.mass.value;
@@ -295,6 +295,7 @@ impl RobotDescription {
             .zip(&map.legs)
             .map(|(&name, joints)| check_leg(&urdf, &meshes, &root_link, name, joints))
             .collect::<Result<Vec<_>, _>>()?;
+        crate::checks::legs(&legs)?;
         let camera = map.camera.clone();
         if !urdf.links.iter().any(|l| l.name == camera.parent) {
             return Err(RobotError::MissingLink {

@@ -81,3 +81,52 @@ fn a_joint_effort_of_1e_minus_300_is_refused() {
 fn the_shipped_robot_has_none_of_these() {
     RobotDescription::from_urdf_str(ERS7_URDF).expect("the ERS-7 loads");
 }
+
+#[test]
+fn legs_mapped_left_for_right_or_sharing_joints_or_with_giant_feet_are_refused() {
+    use quadsim::robot_file::RobotFile;
+    let ers7 = include_str!("../../../assets/robots/ers7.toml");
+    let dir = std::env::temp_dir().join(format!("legs-mapped-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    std::fs::write(dir.join("robot.urdf"), ERS7_URDF).expect("urdf");
+    let load = |text: String| {
+        let file = dir.join("robot.toml");
+        std::fs::write(&file, text.replace("../ers7.urdf", "robot.urdf")).expect("file");
+        RobotFile::from_file(&file)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    load(ers7.to_string()).expect("the ERS-7 as shipped");
+    let swapped = ers7
+        .replace("front_left = ", "front_right_was = ")
+        .replace("front_right = ", "front_left = ")
+        .replace("front_right_was = ", "front_right = ");
+    let e = load(swapped).expect_err("left for right");
+    assert!(e.contains("legs mapped left for right"), "{e}");
+    let line = |key: &str| {
+        ers7.lines()
+            .find(|l| l.starts_with(key))
+            .expect(key)
+            .split_once('=')
+            .expect("=")
+            .1
+            .trim()
+            .to_string()
+    };
+    let shared = ers7.replace(
+        &format!("rear_left = {}", line("rear_left")),
+        &format!("rear_left = {}", line("front_left")),
+    );
+    let e = load(shared).expect_err("two legs on the same joints");
+    assert!(e.contains("each leg has joints of its own"), "{e}");
+    let giant = ERS7_URDF.replacen(
+        r#"<sphere radius="0.012"/>"#,
+        r#"<sphere radius="1.0"/>"#,
+        1,
+    );
+    let e = RobotDescription::from_urdf_str(&giant)
+        .expect_err("a 1 m foot on a 0.14 m leg")
+        .to_string();
+    assert!(e.contains("half its leg's length"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
