@@ -157,7 +157,8 @@ pub fn legs(legs: &[LegDescription]) -> Result<(), RobotError> {
             ));
         }
         let leg_m = a.thigh_m + a.shank_m;
-        if !(a.foot_radius_m < 0.5 * leg_m) {
+        // NaN fails too: the radius must be known to be small enough.
+        if a.foot_radius_m.partial_cmp(&(0.5 * leg_m)) != Some(std::cmp::Ordering::Less) {
             return Err(bad(
                 a.name,
                 format!(
@@ -174,7 +175,7 @@ pub fn legs(legs: &[LegDescription]) -> Result<(), RobotError> {
     };
     let front = x('f').fold(f64::INFINITY, f64::min);
     let rear = x('h').fold(f64::NEG_INFINITY, f64::max);
-    if !(front > rear) {
+    if front.partial_cmp(&rear) != Some(std::cmp::Ordering::Greater) {
         return Err(bad(
             "fl",
             format!(
