@@ -1,6 +1,7 @@
 //! A fuzzing harness for every reader of a file a user gives (issue 61): URDFs
-//! (the ERS-7's and the trotter's), robot files, scenario files, recorded
-//! trials (events, truth and dataset.json) and the learner protocol's lines,
+//! (the ERS-7's and the trotter's), robot files, scenario files, mesh files
+//! (STL), recorded trials (events, truth and dataset.json) and the learner
+//! protocol's lines,
 //! each fed arbitrary bytes and mutations of the shipped files (bytes flipped,
 //! inserted, deleted, the file cut short, numbers made NaN, infinite, negative,
 //! zero or huge). No input may panic: each is read or refused with an error.
@@ -127,6 +128,47 @@ fn robot_files_never_panic() {
         let t = text(b).replace("../ers7.urdf", "ers7.urdf");
         std::fs::write(&file, t).expect("write");
         quadsim::RobotFile::from_file(&file).is_ok()
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// An ASCII STL tetrahedron, 3 cm across: the seed of the mesh fuzzing.
+fn tetrahedron_stl() -> String {
+    let p = [
+        [0.0, 0.0, 0.0],
+        [0.03, 0.0, 0.0],
+        [0.0, 0.03, 0.0],
+        [0.0, 0.0, 0.03],
+    ];
+    let mut out = String::from("solid t\n");
+    for f in [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]] {
+        out += "facet normal 0 0 0\nouter loop\n";
+        for v in f {
+            let [x, y, z] = p[v];
+            out += &format!("vertex {x} {y} {z}\n");
+        }
+        out += "endloop\nendfacet\n";
+    }
+    out + "endsolid t\n"
+}
+
+#[test]
+fn mesh_files_never_panic() {
+    // The ERS-7 whose torso collides as a mesh: the fuzzed file.
+    let dir = std::env::temp_dir().join(format!("fuzz-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let urdf = ERS7_URDF.replacen(
+        r#"<box size="0.20 0.10 0.08"/>"#,
+        r#"<mesh filename="torso.stl"/>"#,
+        1,
+    );
+    std::fs::write(dir.join("robot.urdf"), urdf).expect("urdf");
+    let seed: &'static str = Box::leak(tetrahedron_stl().into_boxed_str());
+    let seeds: &'static [&'static str] = Box::leak(Box::new([seed]));
+    let mesh = dir.join("torso.stl");
+    fuzz("mesh (STL)", seeds, |b| {
+        std::fs::write(&mesh, b).expect("write");
+        quadsim::RobotDescription::from_file(dir.join("robot.urdf")).is_ok()
     });
     let _ = std::fs::remove_dir_all(&dir);
 }

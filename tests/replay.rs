@@ -184,6 +184,19 @@ fn a_damaged_dataset_is_refused_naming_file_and_line() {
         },
         "truth rows are out of order",
     );
+    damage(
+        "damaged-reference",
+        "dataset.json",
+        &|t| {
+            let mut v: serde_json::Value = serde_json::from_str(&t).expect("json");
+            let sensor = v["reference"]["sensor"]
+                .as_array_mut()
+                .expect("sensor points");
+            sensor.truncate(1);
+            v.to_string()
+        },
+        "reference sensor model has 1 points",
+    );
     let dir = written("damaged-missing");
     std::fs::remove_file(dir.join("truth.csv")).expect("remove");
     let e = dataset::read(&dir).expect_err("missing file").to_string();

@@ -187,6 +187,47 @@ fn rows(path: &Path, header: &[&str]) -> Result<Vec<(usize, Vec<String>)>, Datas
         .collect())
 }
 
+/// Checks that a dataset's reference has enough points for the degrees its
+/// scenario's learner fits (a polynomial of degree d through fewer than d + 1
+/// points is no yardstick), each finite.
+fn check_reference(meta: &DatasetMeta) -> Result<(), String> {
+    let learner = toml::from_str::<toml::Table>(&meta.scenario)
+        .ok()
+        .and_then(|t| t.get("learner").and_then(toml::Value::as_table).cloned())
+        .unwrap_or_default();
+    let degree = |key: &str, default: i64| {
+        learner
+            .get(key)
+            .and_then(toml::Value::as_integer)
+            .unwrap_or(default)
+    };
+    let r = &meta.reference;
+    for (what, points, d) in [
+        ("action", r.action.len(), degree("action_degree", 4)),
+        ("sensor", r.sensor.len(), degree("sensor_degree", 3)),
+    ] {
+        if i64::try_from(points).unwrap_or(i64::MAX) <= d {
+            return Err(format!(
+                "its reference {what} model has {points} points: a polynomial of degree {d} \
+                 needs at least {}",
+                d + 1
+            ));
+        }
+    }
+    let finite = r
+        .action
+        .iter()
+        .all(|m| m.command.is_finite() && m.velocity_mm_s.is_finite())
+        && r.sensor
+            .iter()
+            .all(|m| m.distance_mm.is_finite() && m.obs_px.is_finite() && m.obs_px > 0.0);
+    if finite {
+        Ok(())
+    } else {
+        Err("its reference holds a point that is not finite (or a reading <= 0 px)".into())
+    }
+}
+
 /// Reads a dataset from `dir`, checking its format version and that its files
 /// agree (same frames, times in order, finite numbers).
 pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
@@ -214,6 +255,11 @@ pub fn read(dir: &Path) -> Result<Dataset, DatasetError> {
             ),
         });
     }
+    check_reference(&meta).map_err(|reason| DatasetError::Malformed {
+        path: meta_path.display().to_string(),
+        line: 0,
+        reason,
+    })?;
     let (events_path, truth_path) = (dir.join("events.csv"), dir.join("truth.csv"));
     let events = rows(&events_path, EVENTS_HEADER)?;
     let truth_header = if meta.format_version == 1 {
