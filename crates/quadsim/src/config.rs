@@ -159,14 +159,14 @@ impl SimConfig {
             (
                 "servo.torque_scale",
                 self.servo.torque_scale,
-                self.servo.torque_scale > 0.0,
-                "> 0",
+                (0.05..=20.0).contains(&self.servo.torque_scale),
+                "in [0.05, 20]",
             ),
             (
                 "servo.speed_scale",
                 self.servo.speed_scale,
-                self.servo.speed_scale > 0.0,
-                "> 0",
+                (0.05..=20.0).contains(&self.servo.speed_scale),
+                "in [0.05, 20]",
             ),
             (
                 "servo.command_period",
@@ -177,14 +177,14 @@ impl SimConfig {
             (
                 "world.start_distance_m",
                 self.start_distance_m,
-                self.start_distance_m > 0.3,
-                "> 0.3 m",
+                self.start_distance_m > 0.3 && self.start_distance_m <= 100.0,
+                "in (0.3, 100] m",
             ),
             (
                 "walk.command_slew",
                 self.walk.command_slew_mm_s2,
-                self.walk.command_slew_mm_s2 > 0.0,
-                "> 0 (mm/s) per s",
+                (1.0..=1e6).contains(&self.walk.command_slew_mm_s2),
+                "in [1, 1000000] (mm/s) per s",
             ),
             (
                 "walk.pitch_gain",
@@ -192,12 +192,17 @@ impl SimConfig {
                 (0.0..=1.0).contains(&self.walk.pitch_gain),
                 "in [0, 1]",
             ),
-            ("beacon.radius_m", b.radius_m, b.radius_m > 0.0, "> 0 m"),
+            (
+                "beacon.radius_m",
+                b.radius_m,
+                (0.001..=5.0).contains(&b.radius_m),
+                "in [0.001, 5] m",
+            ),
             (
                 "beacon.height_m",
                 b.band_height_m,
-                b.band_height_m > 0.0,
-                "> 0 m",
+                (0.01..=10.0).contains(&b.band_height_m),
+                "in [0.01, 10] m",
             ),
             (
                 "beacon.centre_m",
@@ -208,14 +213,14 @@ impl SimConfig {
             (
                 "camera.width_px",
                 f64::from(c.intrinsics.width_px),
-                c.intrinsics.width_px >= 8,
-                ">= 8 px",
+                (8..=4096).contains(&c.intrinsics.width_px),
+                "in [8, 4096] px",
             ),
             (
                 "camera.height_px",
                 f64::from(c.intrinsics.height_px),
-                c.intrinsics.height_px >= 8,
-                ">= 8 px",
+                (8..=4096).contains(&c.intrinsics.height_px),
+                "in [8, 4096] px",
             ),
             (
                 "camera.hfov_deg",
@@ -229,7 +234,12 @@ impl SimConfig {
                 c.intrinsics.vfov_deg > 0.0 && c.intrinsics.vfov_deg < 170.0,
                 "in (0, 170) degrees",
             ),
-            ("camera.noise_px", c.noise_px, c.noise_px >= 0.0, ">= 0 px"),
+            (
+                "camera.noise_px",
+                c.noise_px,
+                (0.0..=50.0).contains(&c.noise_px),
+                "in [0, 50] px",
+            ),
             (
                 "camera.frame_period_s",
                 c.frame_period_s,
