@@ -452,7 +452,7 @@ pub(crate) fn unknown(key: &str) -> SettingError {
 /// a large cluster's time.
 pub const MAX_SEEDS: u64 = 1_000_000;
 
-/// Seeds written `A..B` (B excluded, at least one and at most [`MAX_SEEDS`]).
+/// Seeds written `A..B` (B excluded, at least one and at most `MAX_SEEDS`).
 pub fn parse_seeds(text: &str) -> Result<(u64, u64), String> {
     let (a, b) = text
         .split_once("..")
