@@ -7,8 +7,8 @@
 
 use urdf_rs::{Geometry, Robot};
 
-use crate::description::LegDescription;
 use crate::error::RobotError;
+use crate::legs::LegDescription;
 
 /// The lightest mass a link may have, kg (a milligram): below it a body's
 /// dynamics are numerical noise.

@@ -11,8 +11,9 @@ use std::collections::BTreeMap;
 
 use urdf_rs::{Geometry, JointType, Robot};
 
-use crate::description::{CameraMount, LEG_NAMES, RobotMap, check_tree};
 use crate::error::RobotError;
+use crate::legs::{CameraMount, LEG_NAMES, RobotMap};
+use crate::urdf_tree::check_tree;
 
 /// The actuated joints (revolute or continuous) from the root down to `link`,
 /// root first, or `None` if a joint on the way is neither actuated nor fixed.
@@ -37,7 +38,7 @@ fn position_in_root(urdf: &Robot, joint: &urdf_rs::Joint) -> [f64; 3] {
     let mut p = joint.origin.xyz.0;
     let mut at = &joint.parent.link;
     while let Some(j) = urdf.joints.iter().find(|j| &j.child.link == at) {
-        p = crate::description::place(&j.origin, p);
+        p = crate::pose::place(&j.origin, p);
         at = &j.parent.link;
     }
     p

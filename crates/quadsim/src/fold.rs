@@ -19,7 +19,7 @@
 use urdf_rs::{Inertia, JointType, Robot};
 
 /// A 3 x 3 matrix, row-major.
-type Matrix = [[f64; 3]; 3];
+use crate::pose::{Rotation as Matrix, compose};
 
 /// The smallest principal moment a body's inertia may have, as a fraction of
 /// its largest: the simulator inverts every body's inertia in single
@@ -102,7 +102,7 @@ fn next_fold(r: &Robot) -> Option<(usize, usize, Matrix, [f64; 3])> {
         let own = r.joints.iter().find(|j| j.child.link == link.name);
         if let Some(j) = own.filter(|j| matches!(j.joint_type, JointType::Fixed)) {
             let into = index(&j.parent.link)?;
-            let turn = crate::description::rpy_matrix(j.origin.rpy.0);
+            let turn = crate::pose::rpy_matrix(j.origin.rpy.0);
             return Some((from, into, turn, j.origin.xyz.0));
         }
         // The root or a moving link: into a child fixed to it that is a body.
@@ -116,7 +116,7 @@ fn next_fold(r: &Robot) -> Option<(usize, usize, Matrix, [f64; 3])> {
                 return None;
             }
             // The inverse of the child's placement: x -> R^T (x - t).
-            let placed = crate::description::rpy_matrix(j.origin.rpy.0);
+            let placed = crate::pose::rpy_matrix(j.origin.rpy.0);
             let turn = [0, 1, 2].map(|a| [0, 1, 2].map(|b| placed[b][a]));
             let t = j.origin.xyz.0;
             let shift = [0, 1, 2].map(|a| -(0..3).map(|k| turn[a][k] * t[k]).sum::<f64>());
@@ -131,7 +131,7 @@ fn fold(r: &mut Robot, from: usize, into: usize, turn: &Matrix, shift: [f64; 3])
     let gone = r.links[from].inertial.clone();
     let m = gone.mass.value;
     // Its centre, and its own inertia, in the frame of the link it goes into.
-    let r0 = crate::description::rpy_matrix(gone.origin.rpy.0);
+    let r0 = crate::pose::rpy_matrix(gone.origin.rpy.0);
     let c0 = gone.origin.xyz.0;
     let turned = [0, 1, 2].map(|k| turn[k][0] * c0[0] + turn[k][1] * c0[1] + turn[k][2] * c0[2]);
     let p = [0, 1, 2].map(|k| shift[k] + turned[k]);
@@ -143,7 +143,7 @@ fn fold(r: &mut Robot, from: usize, into: usize, turn: &Matrix, shift: [f64; 3])
     let c = target.origin.xyz.0;
     // The target's inertia about its centre, in its link frame.
     let own = rotated(
-        &crate::description::rpy_matrix(target.origin.rpy.0),
+        &crate::pose::rpy_matrix(target.origin.rpy.0),
         &tensor(&target.inertia),
     );
     let total = big_m + m;
@@ -186,10 +186,6 @@ fn tensor(i: &Inertia) -> Matrix {
         [i.ixy, i.iyy, i.iyz],
         [i.ixz, i.iyz, i.izz],
     ]
-}
-
-fn compose(a: &Matrix, b: &Matrix) -> Matrix {
-    [0, 1, 2].map(|i| [0, 1, 2].map(|k| (0..3).map(|j| a[i][j] * b[j][k]).sum()))
 }
 
 /// `R I R^T`.

@@ -24,12 +24,16 @@ pub mod fold;
 pub mod gait;
 pub mod heading;
 pub mod ik;
+mod leg_chain;
+pub mod legs;
 pub mod mesh;
+mod pose;
 pub mod robot_file;
 pub mod scale;
 pub mod scene;
 pub mod servo;
 pub mod sim;
+mod urdf_tree;
 pub mod vision;
 pub mod walk;
 

@@ -123,7 +123,7 @@ pub fn load(urdf: &Robot, dir: &Path) -> Result<Vec<MeshCollision>, RobotError> 
             if meshes.is_empty() {
                 return Err(refuse(format!("{} holds no mesh", file.display())));
             }
-            let at = crate::description::urdf_pose(c.origin.xyz.0, c.origin.rpy.0);
+            let at = crate::pose::urdf_pose(c.origin.xyz.0, c.origin.rpy.0);
             let parts = meshes
                 .into_iter()
                 .map(|m| {

@@ -36,9 +36,10 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::config::SimConfig;
-use crate::description::{CameraMount, RobotDescription, RobotMap};
+use crate::description::RobotDescription;
 use crate::error::RobotError;
 use crate::gait::{GaitParams, GaitTable};
+use crate::legs::{CameraMount, RobotMap};
 
 /// The shipped robots: name, robot file, URDF file name and URDF text.
 const SHIPPED: [(&str, &str, &str); 2] = [
@@ -319,7 +320,7 @@ impl RobotFile {
             file: label.clone(),
             reason: e.to_string(),
         };
-        let urdf = crate::description::parse(&urdf_text).map_err(in_file)?;
+        let urdf = crate::urdf_tree::parse(&urdf_text).map_err(in_file)?;
         let map = crate::discover::discover(&urdf).map_err(in_file)?;
         // Checked here, where the user's URDF is named: the robot file below
         // is the project's own writing, and TOML has no NaN to write.

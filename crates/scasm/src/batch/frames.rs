@@ -4,11 +4,14 @@
 
 use std::vec::Vec;
 
-use crate::batch::lag::INITIAL_TAU_S;
 use crate::learner::CalibrationLearner;
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
 use crate::scasm::Scasm;
+
+/// Where `tau` starts before the first solve, s (chosen on the development
+/// seeds; the solve moves it).
+pub(crate) const INITIAL_TAU_S: f64 = 0.1;
 
 /// Frames either side of a frame over which [`Start::pinhole`] takes a speed.
 pub(crate) const PINHOLE_SPAN: usize = 10;

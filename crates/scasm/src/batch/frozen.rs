@@ -8,7 +8,6 @@ use std::vec::Vec;
 
 use crate::MAX_REGRESSORS;
 use crate::batch::frames::FrameData;
-use crate::batch::problem::action_index;
 
 /// `sum w (b - j . x)^2` as `b2 - 2 x . c + x' h x`: the sum of squares of
 /// residuals linear in `x`.
@@ -129,5 +128,14 @@ impl Frozen {
             }
         }
         Self { process, reading }
+    }
+}
+
+/// Where A's coefficient `a_i` sits among the free parameters (`a_1` is held).
+pub(crate) fn action_index(i: usize) -> Option<usize> {
+    match i {
+        0 => Some(0),
+        1 => None,
+        i => Some(i - 1),
     }
 }

@@ -12,10 +12,6 @@ use std::vec::Vec;
 use crate::MAX_REGRESSORS;
 use crate::batch::frames::FrameData;
 
-/// Where `tau` starts before the first solve, s (chosen on the development
-/// seeds; the solve moves it).
-pub(crate) const INITIAL_TAU_S: f64 = 0.1;
-
 /// The range `tau` is kept in, s.
 pub(crate) const TAU_RANGE_S: (f64, f64) = (0.005, 2.0);
 

@@ -9,7 +9,7 @@ use std::vec::Vec;
 use crate::MAX_REGRESSORS;
 use crate::batch::config::BatchMlConfig;
 use crate::batch::frames::FrameData;
-use crate::batch::frozen::{Frozen, Quadratic};
+use crate::batch::frozen::{Frozen, Quadratic, action_index};
 use crate::batch::lag::{self, Regressors, TAU_RANGE_S};
 use crate::batch::linalg::{Tridiagonal, solve_dense};
 
@@ -397,15 +397,6 @@ pub(crate) struct NormalEquations {
     pub(crate) model: Vec<f64>,
     pub(crate) rhs_x: Vec<f64>,
     pub(crate) rhs_p: Vec<f64>,
-}
-
-/// Where A's coefficient `a_i` sits among the free parameters (`a_1` is held).
-pub(crate) fn action_index(i: usize) -> Option<usize> {
-    match i {
-        0 => Some(0),
-        1 => None,
-        i => Some(i - 1),
-    }
 }
 
 /// The reading noise's variance from the readings alone: consecutive frames'
