@@ -10,7 +10,7 @@ use urdf_rs::Robot;
 use crate::error::RobotError;
 use crate::leg_chain::check_leg;
 pub use crate::legs::{CameraMount, LEG_NAMES, LegDescription, RobotMap};
-use crate::urdf_tree::{check_tree, moving_without_mass, parse};
+use crate::urdf_tree::{check_tree, floating_base, moving_without_mass, parse};
 
 /// A checked robot description.
 #[derive(Debug, Clone)]
@@ -27,6 +27,11 @@ pub struct RobotDescription {
     pub total_mass_kg: f64,
     /// The mesh collision shapes, loaded (see [`crate::mesh`]).
     pub meshes: Vec<crate::mesh::MeshCollision>,
+    /// What reading the URDF left out, a line each: elements the simulator
+    /// does not use (`<gazebo>`, `<transmission>`, ...) and a floating
+    /// base's frame (see `urdf_xml.rs` and `urdf_tree.rs`), for a warning
+    /// where the robot is named.
+    pub notes: Vec<String>,
 }
 
 impl RobotDescription {
@@ -38,28 +43,34 @@ impl RobotDescription {
                 reason: e.to_string(),
             }
         })?;
-        let urdf = parse(&text)?;
+        let (urdf, notes) = parse(&text)?;
         let map = RobotMap::conventional(&urdf)?;
-        Self::from_urdf_in(urdf, &map, path.parent().unwrap_or_else(|| Path::new("")))
+        Self::checked(
+            urdf,
+            &map,
+            path.parent().unwrap_or_else(|| Path::new("")),
+            notes,
+        )
     }
 
     /// Parses and checks URDF text that follows the shipped robot's naming
     /// convention (see [`RobotMap::conventional`]).
     pub fn from_urdf_str(text: &str) -> Result<Self, RobotError> {
-        let urdf = parse(text)?;
+        let (urdf, notes) = parse(text)?;
         let map = RobotMap::conventional(&urdf)?;
-        Self::from_urdf(urdf, &map)
+        Self::checked(urdf, &map, Path::new(""), notes)
     }
 
     /// Parses and checks URDF text with the legs and camera `map` names.
     pub fn from_urdf_str_with(text: &str, map: &RobotMap) -> Result<Self, RobotError> {
-        Self::from_urdf(parse(text)?, map)
+        Self::from_urdf_str_in(text, map, Path::new(""))
     }
 
     /// Parses and checks URDF text with the legs and camera `map` names, its
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_str_in(text: &str, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
-        Self::from_urdf_in(parse(text)?, map, dir)
+        let (urdf, notes) = parse(text)?;
+        Self::checked(urdf, map, dir, notes)
     }
 
     /// Checks a parsed URDF with the legs and camera `map` names (its
@@ -71,6 +82,17 @@ impl RobotDescription {
     /// Checks a parsed URDF with the legs and camera `map` names, its
     /// meshes' file names relative to `dir`.
     pub fn from_urdf_in(urdf: Robot, map: &RobotMap, dir: &Path) -> Result<Self, RobotError> {
+        let (urdf, note) = floating_base(urdf)?;
+        Self::checked(urdf, map, dir, note.into_iter().collect())
+    }
+
+    /// Checks a URDF read with `notes` (see [`RobotDescription::notes`]).
+    fn checked(
+        urdf: Robot,
+        map: &RobotMap,
+        dir: &Path,
+        notes: Vec<String>,
+    ) -> Result<Self, RobotError> {
         crate::checks::values(&urdf)?;
         crate::checks::rigid_inertia(&urdf)?;
         let root_link = check_tree(&urdf)?;
@@ -162,6 +184,7 @@ impl RobotDescription {
             camera,
             total_mass_kg,
             meshes,
+            notes,
         })
     }
 

@@ -34,6 +34,7 @@ pub mod scene;
 pub mod servo;
 pub mod sim;
 mod urdf_tree;
+mod urdf_xml;
 pub mod vision;
 pub mod walk;
 

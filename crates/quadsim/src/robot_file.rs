@@ -320,7 +320,7 @@ impl RobotFile {
             file: label.clone(),
             reason: e.to_string(),
         };
-        let urdf = crate::urdf_tree::parse(&urdf_text).map_err(in_file)?;
+        let (urdf, _) = crate::urdf_tree::parse(&urdf_text).map_err(in_file)?;
         let map = crate::discover::discover(&urdf).map_err(in_file)?;
         // Checked here, where the user's URDF is named: the robot file below
         // is the project's own writing, and TOML has no NaN to write.

@@ -9,13 +9,89 @@ use urdf_rs::{JointType, Robot};
 use crate::error::RobotError;
 use crate::pose::{Rotation, compose, rotate, rpy_matrix};
 
-/// URDF text parsed (by urdf-rs, after its nesting is checked: see
-/// [`crate::files::check_xml`]).
-pub(crate) fn parse(text: &str) -> Result<Robot, RobotError> {
-    crate::files::check_xml(text).map_err(|reason| RobotError::Parse { reason })?;
-    urdf_rs::read_from_string(text).map_err(|e| RobotError::Parse {
+/// URDF text parsed as ROS reads it (see [`crate::urdf_xml`]), with a
+/// floating base's frame left out (see [`floating_base`]): the robot, and a
+/// note for each thing left out.
+pub(crate) fn parse(text: &str) -> Result<(Robot, Vec<String>), RobotError> {
+    let cleaned = crate::urdf_xml::clean(text)?;
+    let urdf = urdf_rs::read_from_string(&cleaned.xml).map_err(|e| RobotError::Parse {
         reason: e.to_string(),
-    })
+    })?;
+    let mut notes = cleaned.notes;
+    let (urdf, note) = floating_base(urdf)?;
+    notes.extend(note);
+    Ok((urdf, notes))
+}
+
+/// A robot whose root is a frame joined to its body by a `floating` (or
+/// `planar`) joint, as ROS writes a mobile robot (`base_footprint` ->
+/// `base_link`), with that frame and joint left out: the body is the root,
+/// free in space as the simulator's root always is. The frame must be only
+/// that, with no mass, no collision shape and no other child; a floating or
+/// planar joint anywhere else is refused. Returns a note saying what was
+/// left out, if anything was.
+pub(crate) fn floating_base(mut urdf: Robot) -> Result<(Robot, Option<String>), RobotError> {
+    let free = |j: &urdf_rs::Joint| matches!(j.joint_type, JointType::Floating | JointType::Planar);
+    let Some(k) = urdf.joints.iter().position(free) else {
+        return Ok((urdf, None));
+    };
+    let j = &urdf.joints[k];
+    let frame = j.parent.link.clone();
+    let refuse = |reason: String| RobotError::BadJoint {
+        joint: j.name.clone(),
+        reason: format!(
+            "is {}, which is taken only from the root frame to the robot's body (ROS's \
+             base_footprint), and {reason}",
+            kind(&j.joint_type)
+        ),
+    };
+    if let Some(other) = urdf.joints.iter().skip(k + 1).find(|j| free(j)) {
+        return Err(refuse(format!("joint `{}` is another", other.name)));
+    }
+    if urdf.joints.iter().any(|o| o.child.link == frame) {
+        return Err(refuse(format!("its parent `{frame}` is not the root")));
+    }
+    if let Some(o) = urdf
+        .joints
+        .iter()
+        .find(|o| o.parent.link == frame && o.name != j.name)
+    {
+        return Err(refuse(format!(
+            "its parent `{frame}` holds joint `{}` too",
+            o.name
+        )));
+    }
+    if let Some(l) = urdf.links.iter().find(|l| l.name == frame)
+        && (l.inertial.mass.value != 0.0 || !l.collision.is_empty())
+    {
+        return Err(refuse(format!(
+            "its parent `{frame}` has mass or a collision shape"
+        )));
+    }
+    let note = format!(
+        "left out the root frame `{frame}` and its {} joint `{}`: `{}` is the root, free in \
+         space{}",
+        kind(&j.joint_type),
+        j.name,
+        j.child.link,
+        if matches!(j.joint_type, JointType::Planar) {
+            " (not held to the joint's plane)"
+        } else {
+            ""
+        }
+    );
+    urdf.joints.remove(k);
+    urdf.links.retain(|l| l.name != frame);
+    Ok((urdf, Some(note)))
+}
+
+/// A free joint's type as URDF writes it.
+fn kind(t: &JointType) -> &'static str {
+    if matches!(t, JointType::Planar) {
+        "planar"
+    } else {
+        "floating"
+    }
 }
 
 fn link_names(urdf: &Robot) -> Result<HashSet<&str>, RobotError> {

@@ -28,11 +28,9 @@ fn a_knee_that_is_never_straight_bends_the_way_its_range_allows() {
     for leg in ["hl", "hr"] {
         let joint = format!(r#"<joint name="{leg}_knee" type="revolute">"#);
         let at = text.find(&joint).expect("the knee");
-        let limit = text[at..]
-            .find(r#"lower="-2.4" upper="2.4""#)
-            .expect("its limit")
-            + at;
-        text.replace_range(limit..limit + 25, r#"lower="-2.4" upper="-0.1""#);
+        let range = r#"lower="-2.4" upper="2.4""#;
+        let limit = text[at..].find(range).expect("its limit") + at;
+        text.replace_range(limit..limit + range.len(), r#"lower="-2.4" upper="-0.1""#);
     }
     let d = RobotDescription::from_urdf_str(&text).expect("a knee range without zero loads");
     for leg in &d.legs {

@@ -399,6 +399,11 @@ impl LearningMode {
 impl Scenario {
     fn set_robot_file(&mut self, value: &str) -> Result<(), String> {
         let robot = RobotFile::load(value).map_err(|e| format!("{value}: {e}"))?;
+        // What reading its URDF left out (elements the simulator does not
+        // use, a ROS footprint frame): a line each, where the user sees it.
+        for note in &robot.description.notes {
+            eprintln!("warning: {value}: {note}");
+        }
         // Its gait was checked within the legs' reach as it was read.
         let sim = robot.sim_config();
         // The paper's experiment at the robot's scale: its commands, trial
