@@ -157,14 +157,14 @@ mod tests {
                     xmlns:xacro=\"http://www.ros.org/wiki/xacro\">\n<link name=\"a\"><collision>\
                     <geometry><!-- a ball --><sphere radius=\"0.1\"/><?pi x?></geometry>\
                     </collision></link>\n</robot>";
-        let c = clean(text).unwrap();
+        let c = clean(text).expect("as written");
         assert!(
             !c.xml.contains("<!--") && !c.xml.contains("<?"),
             "{}",
             c.xml
         );
         assert!(c.notes.is_empty(), "{:?}", c.notes);
-        let robot = urdf_rs::read_from_string(&c.xml).unwrap();
+        let robot = urdf_rs::read_from_string(&c.xml).expect("as written");
         assert!(matches!(
             robot.links[0].collision[0].geometry,
             urdf_rs::Geometry::Sphere { radius } if radius == 0.1
@@ -178,7 +178,7 @@ mod tests {
                     <gazebo reference=\"a\"><mu1>0.6</mu1></gazebo>\n\
                     <transmission name=\"t\"/>\n<xacro:property name=\"p\" value=\"1\"/>\n\
                     </robot>";
-        let c = clean(text).unwrap();
+        let c = clean(text).expect("as written");
         assert_eq!(c.notes.len(), 4, "{:?}", c.notes);
         for (note, (tag, line)) in c.notes.iter().zip([
             ("sensor", 2),
@@ -199,15 +199,15 @@ mod tests {
         let text = "<robot name=\"r\"><link name=\"a\"/><link name=\"b\"/>\n<joint name=\"j\" \
                     type=\"revolute\"><parent link=\"a\"/><child link=\"b\"/>\n<mimic \
                     joint=\"k\"/></joint></robot>";
-        let e = clean(text).unwrap_err().to_string();
+        let e = clean(text).expect_err("refused").to_string();
         assert!(e.contains("`j`") && e.contains("<mimic> (line 3)"), "{e}");
     }
 
     #[test]
     fn special_characters_survive_and_a_wrong_root_is_named() {
-        let c = clean("<robot name=\"a &amp; b &lt;c&gt;\"><link name=\"x\"/></robot>").unwrap();
-        assert_eq!(urdf_rs::read_from_string(&c.xml).unwrap().name, "a & b <c>");
-        let e = clean("<mujoco model=\"m\"/>").unwrap_err().to_string();
+        let c = clean("<robot name=\"a &amp; b &lt;c&gt;\"><link name=\"x\"/></robot>").expect("as written");
+        assert_eq!(urdf_rs::read_from_string(&c.xml).expect("as written").name, "a & b <c>");
+        let e = clean("<mujoco model=\"m\"/>").expect_err("refused").to_string();
         assert!(e.contains("<mujoco>"), "{e}");
         assert!(clean("<robot><link name=\"x\"></robot>").is_err());
     }

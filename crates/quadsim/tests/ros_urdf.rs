@@ -71,7 +71,7 @@ fn a_xacro_output_with_comments_and_gazebo_elements_is_the_same_robot() {
     let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
     let text = as_xacro_writes_it(ERS7_URDF);
     let d = RobotDescription::from_urdf_str(&text).expect("loads");
-    let line_of = |tag: &str| 1 + text[..text.find(tag).unwrap()].matches('\n').count();
+    let line_of = |tag: &str| 1 + text[..text.find(tag).expect("as written")].matches('\n').count();
     same_robot(&d, &shipped);
     assert!(shipped.notes.is_empty(), "{:?}", shipped.notes);
     // One line each for what was left out, with where it is.
@@ -103,15 +103,15 @@ fn a_floating_joint_from_a_footprint_makes_its_child_the_root() {
 #[test]
 fn a_bare_urdf_with_both_conventions_is_found_as_the_plain_one_is() {
     let dir = std::env::temp_dir().join(format!("quadsim-ros-urdf-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::create_dir_all(&dir).expect("as written");
     let plain = dir.join("plain.urdf");
     let ros = dir.join("ros.urdf");
-    std::fs::write(&plain, ERS7_URDF).unwrap();
+    std::fs::write(&plain, ERS7_URDF).expect("as written");
     std::fs::write(
         &ros,
         with_footprint(&as_xacro_writes_it(ERS7_URDF), "floating"),
     )
-    .unwrap();
+    .expect("as written");
     let a = RobotFile::from_file(&plain).expect("plain");
     let b = RobotFile::from_file(&ros).expect("ROS's conventions");
     assert_eq!(a.description.legs, b.description.legs);
