@@ -205,9 +205,15 @@ mod tests {
 
     #[test]
     fn special_characters_survive_and_a_wrong_root_is_named() {
-        let c = clean("<robot name=\"a &amp; b &lt;c&gt;\"><link name=\"x\"/></robot>").expect("as written");
-        assert_eq!(urdf_rs::read_from_string(&c.xml).expect("as written").name, "a & b <c>");
-        let e = clean("<mujoco model=\"m\"/>").expect_err("refused").to_string();
+        let c = clean("<robot name=\"a &amp; b &lt;c&gt;\"><link name=\"x\"/></robot>")
+            .expect("as written");
+        assert_eq!(
+            urdf_rs::read_from_string(&c.xml).expect("as written").name,
+            "a & b <c>"
+        );
+        let e = clean("<mujoco model=\"m\"/>")
+            .expect_err("refused")
+            .to_string();
         assert!(e.contains("<mujoco>"), "{e}");
         assert!(clean("<robot><link name=\"x\"></robot>").is_err());
     }

@@ -71,7 +71,11 @@ fn a_xacro_output_with_comments_and_gazebo_elements_is_the_same_robot() {
     let shipped = RobotDescription::from_urdf_str(ERS7_URDF).expect("shipped");
     let text = as_xacro_writes_it(ERS7_URDF);
     let d = RobotDescription::from_urdf_str(&text).expect("loads");
-    let line_of = |tag: &str| 1 + text[..text.find(tag).expect("as written")].matches('\n').count();
+    let line_of = |tag: &str| {
+        1 + text[..text.find(tag).expect("as written")]
+            .matches('\n')
+            .count()
+    };
     same_robot(&d, &shipped);
     assert!(shipped.notes.is_empty(), "{:?}", shipped.notes);
     // One line each for what was left out, with where it is.
