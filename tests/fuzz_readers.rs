@@ -1,5 +1,5 @@
 //! A fuzzing harness for every reader of a file a user gives (issue 61): URDFs
-//! (the ERS-7's and the trotter's), robot files, scenario files, mesh files
+//! (the ERS-7's and the trotter's), MJCF (MuJoCo Menagerie's Go2), robot files, scenario files, mesh files
 //! (STL), recorded trials (events, truth and dataset.json) and the learner
 //! protocol's lines,
 //! each fed arbitrary bytes and mutations of the shipped files (bytes flipped,
@@ -19,6 +19,7 @@ use proptest::test_runner::{Config, TestRunner};
 
 const ERS7_URDF: &str = include_str!("../assets/ers7.urdf");
 const TROTTER_URDF: &str = include_str!("../assets/robots/trotter.urdf");
+const GO2_MJCF: &str = include_str!("../assets/robots/menagerie/unitree_go2/go2.xml");
 const ERS7_FILE: &str = include_str!("../assets/robots/ers7.toml");
 const PAPER: &str = include_str!("../assets/scenarios/paper.toml");
 const SPECIALS: [&str; 8] = ["NaN", "inf", "-1", "0", "1e308", "1e-300", "-0", ""];
@@ -116,6 +117,25 @@ fn urdfs_never_panic() {
     fuzz("URDF", &[ERS7_URDF, TROTTER_URDF], |b| {
         quadsim::RobotDescription::from_urdf_str(&text(b)).is_ok()
     });
+}
+
+#[test]
+fn mjcf_files_never_panic() {
+    // Read as a robot is: the MJCF into URDF, its legs found, the robot checked.
+    let dir = std::env::temp_dir().join(format!("fuzz-mjcf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("dir");
+    let file = dir.join("robot.xml");
+    fuzz("MJCF", &[GO2_MJCF], |b| {
+        std::fs::write(&file, b).expect("write");
+        let Ok(model) = quadsim::mjcf::read(&file) else {
+            return false;
+        };
+        let Ok(map) = quadsim::discover::discover(&model.urdf) else {
+            return false;
+        };
+        quadsim::RobotDescription::from_urdf_in(model.urdf, &map, &dir).is_ok()
+    });
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

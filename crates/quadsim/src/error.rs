@@ -21,6 +21,14 @@ pub enum RobotError {
         /// The value, and what it must be.
         reason: String,
     },
+    /// An MJCF element that cannot be read (see [`crate::mjcf`]).
+    #[error("MJCF {at}: {reason}")]
+    Mjcf {
+        /// The element and where it is written: `<geom> at go2.xml line 40`.
+        at: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// The text is not valid URDF.
     #[error("malformed URDF: {reason}")]
     Parse {

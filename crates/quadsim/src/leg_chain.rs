@@ -108,26 +108,25 @@ pub(crate) fn check_leg(
                 format!("limits must be finite with lower < upper, are [{lo}, {hi}]"),
             ));
         }
-        // A continuous joint's <limit> is optional: with none (urdf-rs reads
-        // 0), its servo is limited in neither torque nor speed.
-        let given = |v: f64| {
-            if continuous && v == 0.0 {
-                f64::INFINITY
-            } else {
-                v
-            }
-        };
+        // An effort or velocity limit of 0 is none given (urdf-rs reads a
+        // missing one as 0; PyBullet reads it as no limit; MuJoCo has no
+        // speed limit and a joint no actuator limits has no torque limit):
+        // its servo is limited in neither.
+        let given = |v: f64| if v == 0.0 { f64::INFINITY } else { v };
         let (effort, velocity) = (given(j.limit.effort), given(j.limit.velocity));
-        if effort.is_nan() || effort <= 0.0 || (effort.is_infinite() && !continuous) {
+        if effort.is_nan() || effort <= 0.0 {
             return Err(bad_joint(
                 jn,
-                format!("effort must be > 0, is {}", j.limit.effort),
+                format!("effort must be > 0 or none, is {}", j.limit.effort),
             ));
         }
-        if velocity.is_nan() || velocity <= 0.0 || (velocity.is_infinite() && !continuous) {
+        if velocity.is_nan() || velocity <= 0.0 {
             return Err(bad_joint(
                 jn,
-                format!("velocity limit must be > 0, is {}", j.limit.velocity),
+                format!(
+                    "velocity limit must be > 0 or none, is {}",
+                    j.limit.velocity
+                ),
             ));
         }
         // About the canonical axis, the range is the joint's, mirrored if

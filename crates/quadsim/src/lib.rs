@@ -27,6 +27,7 @@ pub mod ik;
 mod leg_chain;
 pub mod legs;
 pub mod mesh;
+pub mod mjcf;
 mod pose;
 pub mod robot_file;
 pub mod scale;

@@ -294,7 +294,10 @@ impl RobotFile {
             reason: e.to_string(),
         })?;
         if text.trim_start().starts_with('<') {
-            return Self::from_bare_urdf(path, text);
+            let (urdf_text, notes) = urdf_text_of(path, text)?;
+            let mut robot = Self::from_bare_urdf(path, urdf_text)?;
+            robot.description.notes.splice(0..0, notes);
+            return Ok(robot);
         }
         let file = parse(&label, &text)?;
         let urdf_path = path
@@ -308,7 +311,10 @@ impl RobotFile {
                     reason: format!("its URDF: {e}"),
                 }
             })?;
-        Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)
+        let (urdf_text, notes) = urdf_text_of(&urdf_path, urdf_text)?;
+        let mut robot = Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)?;
+        robot.description.notes.splice(0..0, notes);
+        Ok(robot)
     }
 
     /// A bare URDF as a robot: its legs and camera found from its tree
@@ -490,6 +496,25 @@ impl RobotFile {
             .map_err(|e| bad(format!("its gait: {e}")))?;
         Ok(self)
     }
+}
+
+/// A robot's model file's text as URDF: URDF as it is, MJCF read into URDF
+/// (see [`crate::mjcf`]) with what reading it left out.
+fn urdf_text_of(path: &Path, text: String) -> Result<(String, Vec<String>), RobotError> {
+    if !crate::mjcf::is_mjcf(&text) {
+        return Ok((text, Vec::new()));
+    }
+    let in_file = |e: RobotError| RobotError::RobotFile {
+        file: path.display().to_string(),
+        reason: e.to_string(),
+    };
+    let model = crate::mjcf::read(path).map_err(in_file)?;
+    let urdf = urdf_rs::write_to_string(&model.urdf).map_err(|e| {
+        in_file(RobotError::Parse {
+            reason: e.to_string(),
+        })
+    })?;
+    Ok((urdf, model.notes))
 }
 
 fn parse(label: &str, text: &str) -> Result<FileToml, RobotError> {

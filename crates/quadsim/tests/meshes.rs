@@ -1,4 +1,4 @@
-//! Mesh collision shapes (STL, Wavefront OBJ) are loaded as convex hulls
+//! Mesh collision shapes (STL, Wavefront OBJ, COLLADA) are loaded as convex hulls
 //! from beside the URDF, and a mesh that cannot be loaded is an error naming
 //! the link and the file: never a link that collides as nothing.
 
@@ -49,6 +49,39 @@ fn stl() -> String {
     s + "endsolid torso\n"
 }
 
+/// The box as a COLLADA 1.4 document (as ROS packages ship `.dae` meshes).
+fn dae() -> String {
+    let (v, f) = box_mesh();
+    let floats: Vec<String> = v.iter().flatten().map(f64::to_string).collect();
+    let indices: Vec<String> = f.iter().flatten().map(usize::to_string).collect();
+    format!(
+        r##"<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit name="meter" meter="1"/><up_axis>Z_UP</up_axis></asset>
+  <library_geometries><geometry id="torso-mesh" name="torso"><mesh>
+    <source id="torso-positions">
+      <float_array id="torso-positions-array" count="{}">{}</float_array>
+      <technique_common><accessor source="#torso-positions-array" count="{}" stride="3">
+        <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+      </accessor></technique_common>
+    </source>
+    <vertices id="torso-vertices"><input semantic="POSITION" source="#torso-positions"/></vertices>
+    <triangles count="{}"><input semantic="VERTEX" source="#torso-vertices" offset="0"/><p>{}</p></triangles>
+  </mesh></geometry></library_geometries>
+  <library_visual_scenes><visual_scene id="scene"><node id="torso">
+    <instance_geometry url="#torso-mesh"/>
+  </node></visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+"##,
+        floats.len(),
+        floats.join(" "),
+        v.len(),
+        f.len(),
+        indices.join(" ")
+    )
+}
+
 /// The ERS-7 with its torso's box given as the mesh `filename`, read from `dir`.
 fn with_torso_mesh(dir: &Path, filename: &str) -> Result<RobotDescription, quadsim::RobotError> {
     let text = ERS7_URDF.replacen(
@@ -94,6 +127,13 @@ fn a_wavefront_obj_mesh_is_loaded_as_its_hull() {
     let d = dir("obj");
     std::fs::write(d.join("meshes/torso.obj"), obj()).expect("write");
     collides_as_the_box(&with_torso_mesh(&d, "meshes/torso.obj").expect("loads"));
+}
+
+#[test]
+fn a_collada_mesh_is_loaded_as_its_hull() {
+    let d = dir("dae");
+    std::fs::write(d.join("meshes/torso.dae"), dae()).expect("write");
+    collides_as_the_box(&with_torso_mesh(&d, "meshes/torso.dae").expect("loads"));
 }
 
 #[test]

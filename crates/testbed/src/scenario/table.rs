@@ -70,7 +70,9 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         key: "robot.file",
         kind: Kind::Text,
         doc: "a robot file (a shipped robot's name or a path): its URDF, gait and scale",
-        range: Some("a shipped robot's name (ers7, trotter), or a robot file's or URDF's path"),
+        range: Some(
+            "a shipped robot's name (ers7, trotter), or a robot file's, URDF's or MJCF's path",
+        ),
         set: Scenario::set_robot_file,
         get: |s| {
             toml::Value::String(
