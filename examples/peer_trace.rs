@@ -9,7 +9,8 @@
 //! points per step. Only the steps are timed: building the robot and its world
 //! is not, as the peer's model compilation is not.
 //!
-//! `scripts/peer/compare.sh` runs this and then MuJoCo on the same targets.
+//! `scripts/peer/compare.sh` runs this and then MuJoCo on the same targets;
+//! `scripts/peer/response.sh` does so at each command, for the response.
 //!
 //! `cargo run --release --example peer_trace -- --robot trotter --out target/peer`
 
@@ -41,19 +42,29 @@ struct Args {
     out: PathBuf,
 }
 
-/// The robot, its world, and its URDF's text.
-fn robot(name: Option<&str>) -> Result<(RobotDescription, SimConfig, String)> {
+/// The robot, its world, its URDF's text, and its MJCF file if it was read
+/// from one (for the peer to load the file itself).
+type Robot = (RobotDescription, SimConfig, String, Option<PathBuf>);
+
+fn robot(name: Option<&str>) -> Result<Robot> {
     match name {
         None => Ok((
             RobotDescription::from_urdf_str(quadsim::ERS7_URDF)?,
             SimConfig::default(),
             quadsim::ERS7_URDF.to_string(),
+            None,
         )),
         Some(name) => {
             let file = RobotFile::load(name)?;
             // Its meshes found from wherever the copy is read.
             let text = file.urdf_text_elsewhere()?;
-            Ok((file.description.clone(), file.sim_config(), text))
+            let mjcf = match &file.path {
+                Some(p) if quadsim::mjcf::is_mjcf(&std::fs::read_to_string(p)?) => {
+                    Some(std::path::absolute(p)?)
+                }
+                _ => None,
+            };
+            Ok((file.description.clone(), file.sim_config(), text, mjcf))
         }
     }
 }
@@ -112,7 +123,7 @@ fn run(
 
 fn main() -> Result<()> {
     let args: Args = scasm_testbed::args::parse();
-    let (d, config, urdf_text) = robot(args.robot.as_deref())?;
+    let (d, config, urdf_text, mjcf) = robot(args.robot.as_deref())?;
     let config = clear_of_the_beacon(&d, config, &args)?;
     std::fs::create_dir_all(&args.out)?;
     let urdf = args.out.join("robot.urdf");
@@ -124,8 +135,16 @@ fn main() -> Result<()> {
     let mut targets = std::io::BufWriter::new(std::fs::File::create(args.out.join("targets.csv"))?);
     let (mut contacts, mut steps, mut upright, mut end_x) = (0usize, 0usize, true, 0.0);
     let mut off_floor = 0;
+    // Where the torso is halfway through the walk: the speed over the second
+    // half is the gait's, its start from standing over.
+    let total = (args.seconds / config.dt_s).round() as usize;
+    let half = total - (total - (0.5 / config.dt_s).round() as usize) / 2;
+    let mut half_x = 0.0;
     run(&d, config, &args, |sim| {
         end_x = sim.torso().position_m[0];
+        if steps + 1 == half {
+            half_x = end_x;
+        }
         let row: Vec<String> = sim.servo_targets().iter().map(|t| t.to_string()).collect();
         let _ = writeln!(targets, "{}", row.join(","));
         contacts += sim.contact_points();
@@ -195,6 +214,9 @@ fn main() -> Result<()> {
         "steps": steps,
         "upright": upright,
         "travelled_m": end_x - torso.position_m[0],
+        "half_step": half,
+        "second_half_mm_s": 1000.0 * (end_x - half_x) / ((steps - half) as f64 * config.dt_s),
+        "mjcf": mjcf,
         "multibody": timed[0].0,
         "us_per_step": us_per_step,
         "us_per_step_by_multibody": timed.iter().cloned().collect::<std::collections::BTreeMap<_, _>>(),

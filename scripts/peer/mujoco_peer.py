@@ -5,8 +5,16 @@ the URDF (a free joint on the root link, a floor plane, a position servo per
 joint with the testbed's gains and torque limits, the robot's own geoms
 colliding with the floor only, as the testbed's do), replays the recorded
 servo targets as position targets, and reports MuJoCo's physics-only step in
-microseconds (best of several `mujoco.rollout` runs, a C loop) and its contact
-points per step. Prints one JSON line.
+microseconds (best of several `mujoco.rollout` runs, a C loop), its contact
+points per step, and the robot's speed over the second half of the walk.
+Prints one JSON line.
+
+A robot read from an MJCF file (peer.json's `mjcf`) is built from that file
+as MuJoCo reads it instead (its joints' damping, friction loss and armature,
+its geoms' friction and contact settings, its options), with three changes:
+its visual geoms go (their meshes are not in the repository), its world's
+geoms go (the floor is the peer's), and its actuators and keyframes go (the
+testbed's position servos drive the joints, as in the testbed).
 
     python3 scripts/peer/mujoco_peer.py target/peer [--integrator implicitfast|euler]
 
@@ -24,8 +32,24 @@ import numpy as np
 from mujoco import rollout
 
 
+def from_mjcf(path):
+    """The MJCF model as MuJoCo reads it, less what the testbed supplies itself."""
+    spec = mujoco.MjSpec.from_file(path)
+    for g in list(spec.geoms):
+        if (g.contype == 0 and g.conaffinity == 0) or g.parent == spec.worldbody:
+            spec.delete(g)
+    used = {g.meshname for g in spec.geoms}
+    for m in list(spec.meshes):
+        if m.name not in used:
+            spec.delete(m)
+    for element in list(spec.actuators) + list(spec.keys):
+        spec.delete(element)
+    return spec
+
+
 def build(peer, urdf, integrator, solref):
-    spec = mujoco.MjSpec.from_file(urdf)
+    mjcf = peer.get("mjcf")
+    spec = from_mjcf(mjcf) if mjcf else mujoco.MjSpec.from_file(urdf)
     spec.option.timestep = peer["dt_s"]
     spec.option.integrator = {
         "implicitfast": mujoco.mjtIntegrator.mjINT_IMPLICITFAST,
@@ -34,12 +58,13 @@ def build(peer, urdf, integrator, solref):
     root = spec.body(peer["root_link"])
     if root is None:
         sys.exit(f"MuJoCo's model has no body {peer['root_link']!r}")
-    root.add_freejoint()
-    # The robot's geoms touch the floor only (the testbed disables self-contacts).
-    for geom in spec.geoms:
-        geom.contype, geom.conaffinity = 1, 0
-        geom.friction = [peer["friction"], 0.005, 0.0001]
-        geom.solref = [solref, 1.0]
+    if not mjcf:
+        root.add_freejoint()
+        # The robot's geoms touch the floor only (the testbed disables self-contacts).
+        for geom in spec.geoms:
+            geom.contype, geom.conaffinity = 1, 0
+            geom.friction = [peer["friction"], 0.005, 0.0001]
+            geom.solref = [solref, 1.0]
     spec.worldbody.add_geom(
         name="floor",
         type=mujoco.mjtGeom.mjGEOM_PLANE,
@@ -92,12 +117,16 @@ def main():
     start(model, data, peer)
     contacts, upright = 0, True
     root = model.body(peer["root_link"]).id
+    half = peer.get("half_step", steps // 2)
     for k in range(steps):
         data.ctrl[:] = targets[k]
         mujoco.mj_step(model, data)
         contacts += data.ncon
         upright &= bool(data.xmat[root].reshape(3, 3)[2, 2] > 0.5)
+        if k + 1 == half:
+            half_x = float(data.xpos[root][0])
     travelled = float(data.xpos[root][0] - peer["start_position_m"][0])
+    second_half = 1000.0 * (float(data.xpos[root][0]) - half_x) / ((steps - half) * peer["dt_s"])
 
     # The physics-only step, timed in MuJoCo's own C loop.
     start(model, data, peer)
@@ -118,6 +147,8 @@ def main():
         "contacts_per_step": contacts / steps,
         "upright": upright,
         "travelled_m": travelled,
+        "second_half_mm_s": second_half,
+        "model": "MJCF" if peer.get("mjcf") else "URDF",
         "steps": steps,
     }))
 
