@@ -37,7 +37,9 @@ DURATION = "60"  # s: long enough that every learner has models (SCASM starts at
 FILES = {
     "train/config.toml": "every setting of the run, headed by the version, the git commit (and whether "
                          "the tree had uncommitted changes) and the command line: `train --config` it to run it again",
-    "train/summary.json": "per trial figures and status, and their mean, std, median, p10, p90 and n over the ok trials",
+    "train/summary.json": "per trial figures and status, and their mean, std, median, p10, p90 and n over the ok trials; "
+                          "`floor_ratios`: each model's information floor by root mean square over the trials, the error "
+                          "over it by RMS, and the per-trial ratios' median and p90",
     "train/index.html": "the figures beside the results table: open it in a browser",
     "train/measured_action.csv": "the action model the stopwatch measured (the reference)",
     "train/measured_sensor.csv": "the sensor model measured by standing at marked distances (the reference)",

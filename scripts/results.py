@@ -14,6 +14,7 @@ config.toml). Regenerating every figure is one command:
 """
 
 import json
+import math
 import os
 import re
 import sys
@@ -22,7 +23,33 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "book", "src", "results", "data")
 PAGE = os.path.join(ROOT, "book", "src", "results", "index.md")
 KEEP = ("learner", "learner_parameters", "mean", "std", "median", "p10", "p90", "n", "trials_ok",
-        "trials_failed", "trials_worse_than_start", "trials_worse_than_start_seeds")
+        "trials_failed", "trials_worse_than_start", "trials_worse_than_start_seeds", "floor_ratios")
+
+
+def quantile(sorted_values, q):
+    """As `testbed::summary::quantile`: linear between the closest ranks."""
+    if not sorted_values:
+        return float("nan")
+    h = (len(sorted_values) - 1) * q
+    lo = int(h)
+    if lo + 1 < len(sorted_values):
+        return sorted_values[lo] + (h - lo) * (sorted_values[lo + 1] - sorted_values[lo])
+    return sorted_values[lo]
+
+
+def floor_ratio(trials, error, floor):
+    """As `testbed::summary::FloorRatio::of`, over the ok trials' figures (for a
+    summary.json written before summary.json carried `floor_ratios`)."""
+    pairs = [(t[error], t[floor]) for t in trials if t.get("status") == "ok"
+             and isinstance(t.get(error), (int, float)) and isinstance(t.get(floor), (int, float))
+             and math.isfinite(t[error]) and math.isfinite(t[floor]) and t[floor] > 0]
+    if not pairs:
+        return {"floor_rms": None, "rms": None, "median": None, "p90": None, "n": 0}
+    n = len(pairs)
+    floor_rms = math.sqrt(sum(f * f for _, f in pairs) / n)
+    each = sorted(e / f for e, f in pairs)
+    return {"floor_rms": floor_rms, "rms": math.sqrt(sum(e * e for e, _ in pairs) / n) / floor_rms,
+            "median": quantile(each, 0.5), "p90": quantile(each, 0.9), "n": n}
 ORDER = ["scasm-paper", "scasm", "scasm-eiv", "batch-ml", "batch-ml-lag"]
 
 
@@ -50,6 +77,10 @@ def collect(run):
     for d in dirs:
         summary = json.load(open(os.path.join(run, d, "summary.json")))
         kept = {k: summary[k] for k in KEEP if k in summary}
+        if "floor_ratios" not in kept and "trials" in summary:
+            kept["floor_ratios"] = {
+                "action": floor_ratio(summary["trials"], "action_rmse_mm_s", "action_crb_rmse_mm_s"),
+                "sensor": floor_ratio(summary["trials"], "sensor_rmse_mm", "sensor_crb_rmse_mm")}
         kept["made_by"] = stamp(os.path.join(run, d))
         name = summary["learner"]
         with open(os.path.join(DATA, f"eval-{name}.json"), "w") as f:
@@ -62,6 +93,17 @@ def collect(run):
             f.write(f"<!-- made_by: {json.dumps(made, sort_keys=True)} -->\n")
             f.write(open(board).read())
     print(f"kept {len(dirs)} summaries and the benchmark's leaderboard in {os.path.relpath(DATA, ROOT)}")
+
+
+def by_floor(summary, model):
+    """The error over the floor by RMS over the trials (median, p90 of the
+    per-trial ratios); by means where a kept summary has no `floor_ratios`."""
+    r = summary.get("floor_ratios", {}).get(model)
+    if r and r.get("n"):
+        return f"{r['rms']:.2f}x ({r['median']:.2f}x, {r['p90']:.2f}x)"
+    m = summary["mean"]
+    key = ("action_rmse_mm_s", "action_crb_rmse_mm_s") if model == "action" else ("sensor_rmse_mm", "sensor_crb_rmse_mm")
+    return f"{m[key[0]] / m[key[1]]:.2f}x (by means)"
 
 
 def f1(x):
@@ -82,11 +124,11 @@ def page():
             f"| `{name}` | {f1(m['action_rmse_mm_s'])} +- {f1(sd['action_rmse_mm_s'])} | "
             f"{f1(md['action_rmse_mm_s'])} [{f1(p10['action_rmse_mm_s'])}, {f1(p90['action_rmse_mm_s'])}] | "
             f"{m['action_rmse_mm_s'] / m['action_best_rmse_mm_s']:.2f}x; "
-            f"{m['action_rmse_mm_s'] / m['action_crb_rmse_mm_s']:.2f}x | "
+            f"{by_floor(s, 'action')} | "
             f"{f1(m['sensor_rmse_mm'])} +- {f1(sd['sensor_rmse_mm'])} | "
             f"{f1(md['sensor_rmse_mm'])} [{f1(p10['sensor_rmse_mm'])}, {f1(p90['sensor_rmse_mm'])}] | "
             f"{m['sensor_rmse_mm'] / m['sensor_best_rmse_mm']:.2f}x; "
-            f"{m['sensor_rmse_mm'] / m['sensor_crb_rmse_mm']:.2f}x | "
+            f"{by_floor(s, 'sensor')} | "
             f"{m['consistency']:.3f} | {worse} of {ok} |")
         stamps.append((name, s["made_by"]))
         best = m
@@ -97,8 +139,9 @@ def page():
            "or learner has been chosen (they are chosen on development seeds, 100-999). `scasm` runs "
            "live (`train`); every other learner is replayed the same 50 recorded worlds. \"/ best\" is "
            "the mean error over the mean best polynomial of the learner's degree through the measured "
-           "model; \"/ floor\" the mean error over the mean information floor (see "
-           "[the information floor](../design/information-floor.md)).", "",
+           "model; \"/ floor\" the error over the information floor by root mean square over the "
+           "trials, with the median and 90th percentile of the per-trial ratios in brackets (the "
+           "floor bounds a mean square; see [the information floor](../design/information-floor.md)).", "",
            "| learner | action mm/s: mean +- std | median [p10, p90] | / best; / floor | "
            "sensor mm: mean +- std | median [p10, p90] | / best; / floor | consistency | worse than start |",
            "|---|---|---|---|---|---|---|---|---|", *rows, ""]
@@ -106,7 +149,9 @@ def page():
         out += [f"The best quartic through the measured action model is {best['action_best_rmse_mm_s']:.1f} mm/s, "
                 f"the best cubic through the sensor model {best['sensor_best_rmse_mm']:.1f} mm, A0 "
                 f"{best['action_a0_rmse_mm_s']:.1f} mm/s; the information floor's mean is "
-                f"{best['action_crb_rmse_mm_s']:.1f} mm/s and {best['sensor_crb_rmse_mm']:.1f} mm.", ""]
+                f"{best['action_crb_rmse_mm_s']:.1f} mm/s and {best['sensor_crb_rmse_mm']:.1f} mm. "
+                "The benchmark's table below is its leaderboard as that run wrote it: its floor "
+                "columns are the mean error over the mean floor.", ""]
     out += ["Made by (each table's run):", ""]
     for name, st in stamps:
         dirty = " (with uncommitted changes)" if st["uncommitted_changes"] else ""

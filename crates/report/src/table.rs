@@ -20,7 +20,7 @@ pub fn results_table(
         "median [p10, p90] (median / best)",
         "paper",
         "best poly (ours / paper)",
-        "information floor (learned / floor)",
+        "information floor, RMS (learned / floor by RMS; per trial median, p90)",
         "A0 (ours / paper)",
     ]
     .map(String::from)
@@ -62,7 +62,7 @@ pub fn results_table(
             ),
             format!("{:.1} (4.9 % of 600)", paper.action_rmse_mm_s),
             pair(mean.action_best_rmse_mm_s, paper.action_best_rmse_mm_s),
-            testbed::floor::cell(mean.action_rmse_mm_s, mean.action_crb_rmse_mm_s),
+            aggregate.floor.action.cell(),
             pair(mean.action_a0_rmse_mm_s, paper.action_a0_rmse_mm_s),
         ],
         vec![
@@ -81,7 +81,7 @@ pub fn results_table(
             ),
             format!("{:.1} +- 13.9 (2.9 % of 2400)", paper.sensor_rmse_mm),
             pair(mean.sensor_best_rmse_mm, paper.sensor_best_rmse_mm),
-            testbed::floor::cell(mean.sensor_rmse_mm, mean.sensor_crb_rmse_mm),
+            aggregate.floor.sensor.cell(),
             "-".into(),
         ],
         vec![
@@ -161,12 +161,19 @@ pub fn headline(aggregate: &Aggregate, models: &MeasuredModels) -> String {
         ],
     ];
     let mut out = text(&header, &rows);
+    let (a, s) = (&aggregate.floor.action, &aggregate.floor.sensor);
+    let floor = if a.n == 0 && s.n == 0 {
+        "no trial has an information floor".to_string()
+    } else {
+        format!(
+            "the information floor, the least error the data allow, by RMS over the trials: \
+             action {:.1} mm/s (the error {:.2}x it by RMS; per trial median {:.2}x, p90 \
+             {:.2}x), sensor {:.1} mm ({:.2}x; {:.2}x, {:.2}x)",
+            a.floor_rms, a.rms, a.median, a.p90, s.floor_rms, s.rms, s.median, s.p90
+        )
+    };
     out += &wrap(
-        &format!(
-            "(means over the ok trials; the information floor, the least error the data \
-             allow: action {:.1} mm/s, sensor {:.1} mm)",
-            mean.action_crb_rmse_mm_s, mean.sensor_crb_rmse_mm
-        ),
+        &format!("(means over the ok trials; {floor})"),
         CONSOLE_COLUMNS,
     );
     out

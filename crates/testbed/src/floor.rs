@@ -105,17 +105,6 @@ impl Floor {
     }
 }
 
-/// A mean floor beside the mean error over it, as a table cell, "5.8 (1.11x)";
-/// "- (none)" where the trials have none (the world changed during them, or
-/// the learner did not give its degrees), rather than a NaN.
-pub fn cell(learned: f64, floor: f64) -> String {
-    if floor.is_finite() {
-        format!("{floor:.1} ({:.2}x)", learned / floor)
-    } else {
-        "- (none)".into()
-    }
-}
-
 /// The maximum-likelihood models of the floor's own model, by Gauss-Newton
 /// from the truth with the noises given: the efficient estimator the floor
 /// is checked against by Monte Carlo. `(action, sensor)`, raw polynomials.
@@ -616,18 +605,5 @@ impl Table {
 
     fn at(&self, x: f64) -> f64 {
         metrics::interpolate(&self.0, x).map_or(f64::NAN, |(y, _)| y)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::cell;
-
-    #[test]
-    fn a_cell_shows_the_floor_and_the_ratio_or_says_there_is_none() {
-        assert_eq!(cell(6.4, 5.8), "5.8 (1.10x)");
-        // A world that changed has no floor: the cell says so, not "NaN (NaNx)".
-        assert_eq!(cell(6.4, f64::NAN), "- (none)");
-        assert_eq!(cell(f64::NAN, f64::NAN), "- (none)");
     }
 }

@@ -193,7 +193,8 @@ pub fn cells(entries: &[Entry], learners: &[String], scenarios: &[String]) -> Ve
 
 /// The summary table: per scenario and learner, each error's mean +- std
 /// and median [p10, p90], their ratios to the best polynomials (mean;
-/// median), the mean information floor (and the mean error over it), the
+/// median), the information floor by root mean square over the trials (the
+/// error over it by RMS, and the per-trial ratios' median and p90), the
 /// consistency, the trials worse than their start (in the
 /// means), and the trials ok.
 pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
@@ -203,11 +204,11 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
         "action mm/s",
         "action median [p10, p90]",
         "action / best (mean; median)",
-        "action floor (mean / floor)",
+        "action floor, RMS (/ floor; median, p90)",
         "sensor mm",
         "sensor median [p10, p90]",
         "sensor / best (mean; median)",
-        "sensor floor (mean / floor)",
+        "sensor floor, RMS (/ floor; median, p90)",
         "consistency",
         "worse than start",
         "trials ok",
@@ -237,7 +238,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.action_ratio(),
                     c.action_ratio_of(&a.median)
                 ),
-                crate::floor::cell(m.action_rmse_mm_s, m.action_crb_rmse_mm_s),
+                a.floor.action.cell(),
                 format!("{:.1} +- {:.1}", m.sensor_rmse_mm, s.sensor_rmse_mm),
                 tail(|f| f.sensor_rmse_mm),
                 format!(
@@ -245,7 +246,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.sensor_ratio(),
                     c.sensor_ratio_of(&a.median)
                 ),
-                crate::floor::cell(m.sensor_rmse_mm, m.sensor_crb_rmse_mm),
+                a.floor.sensor.cell(),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
                 format!("{}/{}", a.worse_than_start.len(), a.ok()),
                 format!("{}/{}", a.ok(), a.trials),

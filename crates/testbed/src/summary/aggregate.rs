@@ -3,6 +3,7 @@
 //! named, and the trials that ended worse than their uncalibrated start named.
 
 use super::figures::Figures;
+use super::floor_ratios::{FloorRatio, FloorRatios};
 use super::recovery::RECONVERGED_WITHIN;
 use super::status::TrialStatus;
 
@@ -58,6 +59,9 @@ pub struct Aggregate {
     pub p90: Figures,
     /// How many trials each figure's statistics are over.
     pub counted: Figures,
+    /// The errors against their information floors, by root mean square
+    /// over the `Ok` trials that have one (see [`FloorRatio`]).
+    pub floor: FloorRatios,
     /// The trials that did not end `Ok`: seed and status.
     pub failed: Vec<(u64, TrialStatus)>,
     /// The `Ok` trials whose final models are worse than the uncalibrated
@@ -85,6 +89,13 @@ impl Aggregate {
             p10: Figures::map(&ok, |v| percentile(v, 0.1)),
             p90: Figures::map(&ok, |v| percentile(v, 0.9)),
             counted: Figures::map(&ok, |v| defined(v).len() as f64),
+            floor: FloorRatios {
+                action: FloorRatio::of(
+                    ok.iter()
+                        .map(|f| (f.action_rmse_mm_s, f.action_crb_rmse_mm_s)),
+                ),
+                sensor: FloorRatio::of(ok.iter().map(|f| (f.sensor_rmse_mm, f.sensor_crb_rmse_mm))),
+            },
             failed: trials
                 .iter()
                 .filter(|t| !t.1.is_ok())
@@ -307,8 +318,13 @@ impl Aggregate {
 
     /// The statistics as `summary.json` has them: `mean`, `std`, `median`,
     /// `p10`, `p90` and `n` (how many trials each figure's are over), each an
-    /// object of every figure.
+    /// object of every figure, and `floor_ratios` (each model's
+    /// [`FloorRatio`]).
     pub fn statistics_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        let floor = (
+            "floor_ratios".to_string(),
+            serde_json::to_value(self.floor).unwrap_or_default(),
+        );
         [
             ("mean", &self.mean),
             ("std", &self.std),
@@ -319,6 +335,7 @@ impl Aggregate {
         ]
         .into_iter()
         .map(|(k, f)| (k.to_string(), serde_json::to_value(f).unwrap_or_default()))
+        .chain(std::iter::once(floor))
         .collect()
     }
 }
