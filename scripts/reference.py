@@ -267,7 +267,12 @@ def pages():
              "or `target/release/examples/NAME FLAGS` once built. Each takes `--help`, and `--version` "
              "(the version and the commit it was built from). A flag marked with a setting's key "
              "in brackets sets that setting, and overrides the scenario file and `--set`. `view` is built "
-             "only with the `rerun` feature: `cargo run --features rerun --example view -- --help`.", ""]
+             "only with the `rerun` feature: `cargo run --features rerun --example view -- --help`.", "",
+             "The same commands are the subcommands of one binary, `scasm-testbed` (`cargo install --path .`, "
+             "or `cargo run --release --bin scasm-testbed --`), with the same flags; an example's name "
+             "with `-` for `_` (`measure-action`), and `peer` for `peer_trace`:", "",
+             "```text", run([os.path.join(ROOT, "target", "release", "scasm-testbed"), "--help"]).split("\n", 2)[2].rstrip(),
+             "```", ""]
     for b in BINARIES:
         flags.append(example(b, "--help-markdown"))
     settings = ["# Settings", "",
@@ -293,7 +298,7 @@ def pages():
 
 def main():
     check = "--check" in sys.argv[1:]
-    run(["cargo", "build", "--release", "--quiet", "--examples"])
+    run(["cargo", "build", "--release", "--quiet", "--examples", "--bins"])
     generated, errors = pages()
     for e in errors:
         print(f"reference: {e}")

@@ -15,8 +15,28 @@ pub const VERSION: &str = concat!(
 /// The command line, parsed into `T`; `--version` and `--help-markdown` print
 /// and exit.
 pub fn parse<T: FromArgMatches + CommandFactory>() -> T {
+    let mut args = std::env::args_os();
+    let name = args.next().and_then(|a| {
+        std::path::Path::new(&a)
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+    });
+    parse_from(name.as_deref(), args.collect())
+}
+
+/// As [`parse`], for a command named `name` (`scasm-testbed train`) given the
+/// flags `args` (those after its name).
+pub fn parse_from<T: FromArgMatches + CommandFactory>(
+    name: Option<&str>,
+    args: Vec<std::ffi::OsString>,
+) -> T {
+    let named = |c: clap::Command| match name {
+        // Once per process: clap keeps the name for the life of the program.
+        Some(n) => c.name(&*n.to_string().leak()),
+        None => c,
+    };
     // Before parsing: a binary with a required argument prints its flags too.
-    if std::env::args_os().skip(1).any(|a| a == "--help-markdown") {
+    if args.iter().any(|a| a == "--help-markdown") {
         print!("{}", markdown(&named(T::command())));
         std::process::exit(0);
     }
@@ -26,21 +46,9 @@ pub fn parse<T: FromArgMatches + CommandFactory>() -> T {
             .action(ArgAction::SetTrue)
             .hide(true),
     );
-    T::from_arg_matches(&command.get_matches()).unwrap_or_else(|e| e.exit())
-}
-
-/// The command named as the binary was run (`train`, not the package's name).
-fn named(command: clap::Command) -> clap::Command {
-    let name = std::env::args_os().next().and_then(|a| {
-        std::path::Path::new(&a)
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-    });
-    match name {
-        // Once per process: clap keeps the name for the life of the program.
-        Some(n) => command.name(&*n.leak()),
-        None => command,
-    }
+    let argv =
+        std::iter::once(std::ffi::OsString::from(name.unwrap_or("scasm-testbed"))).chain(args);
+    T::from_arg_matches(&command.get_matches_from(argv)).unwrap_or_else(|e| e.exit())
 }
 
 /// A command's flags as a Markdown section: its about line, usage and a table.

@@ -1,8 +1,11 @@
-//! Command-line pieces shared by the examples: the flags that choose a scenario
-//! and a run's trials, `--learner list`, and run directories.
+//! The testbed's commands ([`commands`]: train, replay, benchmark, sweep,
+//! measure, peer, view), and the command-line pieces they share: the flags
+//! that choose a scenario and a run's trials, `--learner list`, and run
+//! directories.
 #![warn(missing_docs)]
 
 pub mod args;
+pub mod commands;
 
 use std::path::{Path, PathBuf};
 
