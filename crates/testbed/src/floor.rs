@@ -196,15 +196,7 @@ impl<'a> Problem<'a> {
         if !(command_scale > 0.0 && hi > lo) {
             return None;
         }
-        let mut changed_at = f64::NEG_INFINITY;
-        let changing = (0..rows.len())
-            .map(|j| {
-                if j > 0 && rows[j].command != rows[j - 1].command {
-                    changed_at = rows[j - 1].t_s;
-                }
-                j > 0 && rows[j - 1].t_s - changed_at < CHANGING_OVER_S - 1e-9
-            })
-            .collect();
+        let changing = changing_frames(rows);
         let mut problem = Self {
             rows,
             reference,
@@ -605,5 +597,48 @@ impl Table {
 
     fn at(&self, x: f64) -> f64 {
         metrics::interpolate(&self.0, x).map_or(f64::NAN, |(y, _)| y)
+    }
+}
+
+/// Per row: whether its frame starts within [`CHANGING_OVER_S`] of a change
+/// of command. The walk off from standing, at the first frame's start, is a
+/// change like any later one (counted as steady, it made the steady noise
+/// about twice what a steady frame has).
+fn changing_frames(rows: &[Sample]) -> Vec<bool> {
+    let mut changed_at = match rows {
+        [first, second, ..] => first.t_s - (second.t_s - first.t_s),
+        _ => f64::NEG_INFINITY,
+    };
+    (0..rows.len())
+        .map(|j| {
+            if j > 0 && rows[j].command != rows[j - 1].command {
+                changed_at = rows[j - 1].t_s;
+            }
+            j > 0 && rows[j - 1].t_s - changed_at < CHANGING_OVER_S - 1e-9
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_walk_off_from_standing_and_each_change_of_command_are_changing_over() {
+        // 20 Hz frames: command 100 from the start, 200 from 2 s.
+        let rows: Vec<Sample> = (1..=60)
+            .map(|k| Sample {
+                t_s: 0.05 * f64::from(k),
+                command: if k <= 40 { 100.0 } else { 200.0 },
+                obs_px: None,
+                x_true_mm: 0.0,
+            })
+            .collect();
+        let changing = changing_frames(&rows);
+        let flagged: Vec<usize> = (0..rows.len()).filter(|&j| changing[j]).collect();
+        // Frames starting in [0, 0.5) s and in [2.0, 2.5) s (row j spans
+        // rows[j-1].t_s to rows[j].t_s; row 0 has no frame before it).
+        let want: Vec<usize> = (1..10).chain(40..50).collect();
+        assert_eq!(flagged, want);
     }
 }

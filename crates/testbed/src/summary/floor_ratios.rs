@@ -10,7 +10,7 @@
 
 use serde::Serialize;
 
-use super::aggregate::quantile;
+use super::quantile::quantile;
 
 /// One model's errors against its floors over the trials where both are finite.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

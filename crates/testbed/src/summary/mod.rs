@@ -6,12 +6,14 @@
 pub mod aggregate;
 pub mod figures;
 pub mod floor_ratios;
+pub mod quantile;
 pub mod recovery;
 pub mod status;
 
-pub use aggregate::{Aggregate, TrialRow, quantile};
+pub use aggregate::{Aggregate, TrialRow};
 pub use figures::{Field, Figures, LOCATION_WINDOW_S, best_possible};
 pub use floor_ratios::{FloorRatio, FloorRatios};
+pub use quantile::quantile;
 pub use recovery::{RECONVERGED_WITHIN, Recovery, SETTLED_WINDOW_S};
 pub use status::TrialStatus;
 
