@@ -73,7 +73,9 @@ def stamp(run_dir):
 
 def collect(run):
     os.makedirs(DATA, exist_ok=True)
-    dirs = [d for d in sorted(os.listdir(run)) if os.path.exists(os.path.join(run, d, "summary.json"))]
+    # A train's or a replay's folder (the benchmark's, which has a summary.json too, is kept below).
+    dirs = [d for d in sorted(os.listdir(run))
+            if all(os.path.exists(os.path.join(run, d, f)) for f in ("summary.json", "config.toml"))]
     for d in dirs:
         summary = json.load(open(os.path.join(run, d, "summary.json")))
         kept = {k: summary[k] for k in KEEP if k in summary}
@@ -150,8 +152,7 @@ def page():
                 f"the best cubic through the sensor model {best['sensor_best_rmse_mm']:.1f} mm, A0 "
                 f"{best['action_a0_rmse_mm_s']:.1f} mm/s; the information floor's mean is "
                 f"{best['action_crb_rmse_mm_s']:.1f} mm/s and {best['sensor_crb_rmse_mm']:.1f} mm. "
-                "The benchmark's table below is its leaderboard as that run wrote it: its floor "
-                "columns are the mean error over the mean floor.", ""]
+                "The benchmark's table below is its leaderboard as that run wrote it.", ""]
     out += ["Made by (each table's run):", ""]
     for name, st in stamps:
         dirty = " (with uncommitted changes)" if st["uncommitted_changes"] else ""
