@@ -443,6 +443,9 @@ pub struct TrialOutcome {
     pub learner_wall_s: f64,
     /// When the world changed during the trial, s (see [`Reference::at`]).
     pub world_changes_s: Vec<f64>,
+    /// Ground truth: the largest distance the torso went off the line of
+    /// approach over the trial, mm.
+    pub off_line_max_mm: f64,
     /// The trial's information floor at the learner's degrees (see
     /// [`crate::floor`]), if the learner's degrees were given and the world
     /// did not change.
@@ -599,6 +602,10 @@ pub fn learn(
         realtime_factor: recording.realtime_factor,
         learner_wall_s: learner_wall.as_secs_f64(),
         world_changes_s: reference.changes.iter().map(|c| c.0).collect(),
+        off_line_max_mm: frames
+            .iter()
+            .map(|f| f.truth.lateral_mm.abs())
+            .fold(0.0, f64::max),
     })
 }
 

@@ -97,6 +97,11 @@ figures! {
     /// the queries of its models (the physics' own time is `realtime_factor`'s).
     @serde(default = "nan")
     learner_wall_s,
+    /// Ground truth: the largest distance the torso went off the line of
+    /// approach over the trial, forwards or backwards, mm (the heading
+    /// keeper's work: it steers by what the robot sees).
+    @serde(default = "nan")
+    off_line_max_mm,
     /// The localiser with the learned models: location RMSE over the last 60 s
     /// after the best affine map to mm, mm.
     localisation_rmse_mm,
@@ -239,6 +244,7 @@ impl Figures {
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
             learner_wall_s: outcome.learner_wall_s,
+            off_line_max_mm: outcome.off_line_max_mm,
             fallback_s: fallback_s(&outcome.trace),
             ..Self::recovery_of(outcome, Self::localisation_of(outcome))
         }
