@@ -122,6 +122,9 @@ def page():
         m, sd, md, p10, p90 = (s[k] for k in ("mean", "std", "median", "p10", "p90"))
         ok = s["trials_ok"]
         worse = s["trials_worse_than_start"]
+        seeds = s.get("trials_worse_than_start_seeds", [])
+        by_action = sum(w["action_rmse_mm_s"] > w["action_a0_rmse_mm_s"] for w in seeds)
+        by_sensor = sum(w["sensor_rmse_mm"] > w["sensor_start_rmse_mm"] for w in seeds)
         rows.append(
             f"| `{name}` | {f1(m['action_rmse_mm_s'])} +- {f1(sd['action_rmse_mm_s'])} | "
             f"{f1(md['action_rmse_mm_s'])} [{f1(p10['action_rmse_mm_s'])}, {f1(p90['action_rmse_mm_s'])}] | "
@@ -131,7 +134,7 @@ def page():
             f"{f1(md['sensor_rmse_mm'])} [{f1(p10['sensor_rmse_mm'])}, {f1(p90['sensor_rmse_mm'])}] | "
             f"{m['sensor_rmse_mm'] / m['sensor_best_rmse_mm']:.2f}x; "
             f"{by_floor(s, 'sensor')} | "
-            f"{m['consistency']:.3f} | {worse} of {ok} |")
+            f"{m['consistency']:.3f} | {worse} of {ok} ({by_action}, {by_sensor}) |")
         stamps.append((name, s["made_by"]))
         best = m
     out = ["# Headline results", "",
@@ -145,7 +148,8 @@ def page():
            "trials, with the median and 90th percentile of the per-trial ratios in brackets (the "
            "floor bounds a mean square; see [the information floor](../design/information-floor.md)).", "",
            "| learner | action mm/s: mean +- std | median [p10, p90] | / best; / floor | "
-           "sensor mm: mean +- std | median [p10, p90] | / best; / floor | consistency | worse than start |",
+           "sensor mm: mean +- std | median [p10, p90] | / best; / floor | consistency | "
+           "worse than start (action, sensor) |",
            "|---|---|---|---|---|---|---|---|---|", *rows, ""]
     if rows:
         out += [f"The best quartic through the measured action model is {best['action_best_rmse_mm_s']:.1f} mm/s, "

@@ -210,7 +210,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
         "sensor / best (mean; median)",
         "sensor floor, RMS (/ floor; median, p90)",
         "consistency",
-        "worse than start",
+        "worse than start (action, sensor)",
         "trials ok",
     ]
     .map(String::from)
@@ -248,7 +248,13 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                 ),
                 a.floor.sensor.cell(),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
-                format!("{}/{}", a.worse_than_start.len(), a.ok()),
+                format!(
+                    "{}/{} ({}, {})",
+                    a.worse_than_start.len(),
+                    a.ok(),
+                    a.worse_by_model().0,
+                    a.worse_by_model().1
+                ),
                 format!("{}/{}", a.ok(), a.trials),
             ]
         })

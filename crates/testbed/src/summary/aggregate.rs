@@ -178,6 +178,21 @@ impl Aggregate {
             .collect()
     }
 
+    /// Of the trials worse than their start, how many by their action model
+    /// and how many by their sensor model (a trial may be both).
+    pub fn worse_by_model(&self) -> (usize, usize) {
+        let count = |worse: fn(&Figures) -> bool| {
+            self.worse_than_start
+                .iter()
+                .filter(|(_, f)| worse(f))
+                .count()
+        };
+        (
+            count(Figures::action_worse_than_start),
+            count(Figures::sensor_worse_than_start),
+        )
+    }
+
     /// The trials worse than their start as JSON: `[{"seed": 4,
     /// "action_rmse_mm_s": .., "action_a0_rmse_mm_s": .., "sensor_rmse_mm":
     /// .., "sensor_start_rmse_mm": ..}, ...]`.
@@ -401,10 +416,21 @@ mod tests {
             ..rows[0].2
         };
         rows.push((9002, TrialStatus::Ok, bad));
+        // And one worse by its sensor model alone.
+        let sensor_only = Figures {
+            sensor_rmse_mm: 310.0,
+            ..rows[0].2
+        };
+        rows.push((9003, TrialStatus::Ok, sensor_only));
+        let a = Aggregate::of(&rows);
+        assert_eq!(a.ok(), 11);
+        assert_eq!(a.worse_than_start.len(), 2);
+        assert_eq!(a.worse_than_start[0].0, 9002);
+        assert_eq!(a.worse_by_model(), (1, 2));
+        rows.pop();
         let a = Aggregate::of(&rows);
         assert_eq!(a.ok(), 10);
         assert_eq!(a.worse_than_start.len(), 1);
-        assert_eq!(a.worse_than_start[0].0, 9002);
         // In the mean, which it pulls far from the median; the p90 shows it.
         assert_eq!(a.mean.action_rmse_mm_s, (126.0 + 130.0) / 10.0);
         assert_eq!(a.median.action_rmse_mm_s, 14.5);

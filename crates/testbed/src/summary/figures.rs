@@ -255,8 +255,18 @@ impl Figures {
     /// model's above that of the sensor model learned from A0 on the same
     /// frames (section IV). Such a trial is a result, and stays in the means.
     pub fn worse_than_start(&self) -> bool {
+        self.action_worse_than_start() || self.sensor_worse_than_start()
+    }
+
+    /// Whether the learned action model ends worse than A0.
+    pub fn action_worse_than_start(&self) -> bool {
         self.action_rmse_mm_s > self.action_a0_rmse_mm_s
-            || self.sensor_rmse_mm > self.sensor_start_rmse_mm
+    }
+
+    /// Whether the learned sensor model ends worse than the one learned
+    /// from A0 on the same frames.
+    pub fn sensor_worse_than_start(&self) -> bool {
+        self.sensor_rmse_mm > self.sensor_start_rmse_mm
     }
 
     /// `rest` with the recovery figures of the trial's first change of the

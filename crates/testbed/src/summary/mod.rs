@@ -62,6 +62,8 @@ pub fn summary_json(
         "trials_ok": aggregate.ok(),
         "trials_failed": aggregate.failed_json(),
         "trials_worse_than_start": aggregate.worse_than_start.len(),
+        "trials_worse_than_start_action": aggregate.worse_by_model().0,
+        "trials_worse_than_start_sensor": aggregate.worse_by_model().1,
         "trials_worse_than_start_seeds": aggregate.worse_than_start_json(),
         "paper": Figures::paper(),
         "reference": reference,
