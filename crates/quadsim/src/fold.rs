@@ -166,14 +166,7 @@ fn fold(r: &mut Robot, from: usize, into: usize, turn: &Matrix, shift: [f64; 3])
         xyz: urdf_rs::Vec3(at),
         rpy: urdf_rs::Vec3([0.0; 3]),
     };
-    target.inertia = Inertia {
-        ixx: i[0][0],
-        ixy: i[0][1],
-        ixz: i[0][2],
-        iyy: i[1][1],
-        iyz: i[1][2],
-        izz: i[2][2],
-    };
+    target.inertia = tensor_inertia(&i);
     let gone = &mut r.links[from].inertial;
     gone.mass.value = 0.0;
     gone.origin = urdf_rs::Pose::default();
@@ -192,6 +185,18 @@ fn tensor(i: &Inertia) -> Matrix {
 fn rotated(r: &Matrix, i: &Matrix) -> Matrix {
     let ri = [0, 1, 2].map(|a| [0, 1, 2].map(|b| (0..3).map(|k| r[a][k] * i[k][b]).sum::<f64>()));
     [0, 1, 2].map(|a| [0, 1, 2].map(|b| (0..3).map(|k| ri[a][k] * r[b][k]).sum()))
+}
+
+/// A symmetric inertia tensor as URDF writes it.
+pub(crate) fn tensor_inertia(i: &Matrix) -> Inertia {
+    Inertia {
+        ixx: i[0][0],
+        ixy: i[0][1],
+        ixz: i[0][2],
+        iyy: i[1][1],
+        iyz: i[1][2],
+        izz: i[2][2],
+    }
 }
 
 #[cfg(test)]

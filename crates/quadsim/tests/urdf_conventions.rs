@@ -197,15 +197,7 @@ fn link_mut<'a>(urdf: &'a mut urdf_rs::Robot, name: &str) -> &'a mut urdf_rs::Li
         .expect("the link")
 }
 
-/// The torso's position after standing 0.5 s and walking 2 s at 300.
-fn walked(d: &RobotDescription) -> [f64; 3] {
-    let mut sim = QuadrupedSim::new(d, SimConfig::default()).expect("a world");
-    sim.advance(0.5);
-    sim.set_command(300.0).expect("finite");
-    sim.advance(2.0);
-    assert!(sim.is_upright());
-    sim.torso().position_m
-}
+include!("common/walked.rs");
 
 /// `d` walks as the shipped ERS-7 does, up to rapier's f32 rounding (which
 /// 2.5 s of footfalls amplify to tens of micrometres).

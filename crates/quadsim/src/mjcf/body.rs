@@ -340,14 +340,7 @@ impl<'a> Builder<'a> {
                     })
                     .urdf(),
                     mass: urdf_rs::Mass { value: p.mass },
-                    inertia: Inertia {
-                        ixx: i[0][0],
-                        ixy: i[0][1],
-                        ixz: i[0][2],
-                        iyy: i[1][1],
-                        iyz: i[1][2],
-                        izz: i[2][2],
-                    },
+                    inertia: crate::fold::tensor_inertia(&i),
                 };
             }
         } else if let Some(el) = inertial {

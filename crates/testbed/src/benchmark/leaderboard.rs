@@ -248,13 +248,14 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                 ),
                 a.floor.sensor.cell(),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
-                format!(
-                    "{}/{} ({}, {})",
-                    a.worse_than_start.len(),
-                    a.ok(),
-                    a.worse_by_model().0,
-                    a.worse_by_model().1
-                ),
+                {
+                    let (action, sensor) = a.worse_by_model();
+                    format!(
+                        "{}/{} ({action}, {sensor})",
+                        a.worse_than_start.len(),
+                        a.ok()
+                    )
+                },
                 format!("{}/{}", a.ok(), a.trials),
             ]
         })

@@ -55,6 +55,7 @@ pub fn summary_json(
             v
         })
         .collect();
+    let worse_by_model = aggregate.worse_by_model();
     let mut json = serde_json::json!({
         "learner": learner,
         "learner_parameters": learner_parameters,
@@ -62,8 +63,8 @@ pub fn summary_json(
         "trials_ok": aggregate.ok(),
         "trials_failed": aggregate.failed_json(),
         "trials_worse_than_start": aggregate.worse_than_start.len(),
-        "trials_worse_than_start_action": aggregate.worse_by_model().0,
-        "trials_worse_than_start_sensor": aggregate.worse_by_model().1,
+        "trials_worse_than_start_action": worse_by_model.0,
+        "trials_worse_than_start_sensor": worse_by_model.1,
         "trials_worse_than_start_seeds": aggregate.worse_than_start_json(),
         "paper": Figures::paper(),
         "reference": reference,
