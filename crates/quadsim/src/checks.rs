@@ -3,7 +3,7 @@
 //! link's mass, if it has one, between a milligram and a hundred tonnes, its
 //! inertia a rigid body's (principal moments that satisfy the triangle
 //! inequality, [`rigid_inertia`]); joints whose effort and speed limits, where given, are
-//! positive. Each refusal names the element, the value and what it must be.
+//! positive, and whose damping and friction are not negative. Each refusal names the element, the value and what it must be.
 
 use urdf_rs::{Geometry, Robot};
 
@@ -78,6 +78,15 @@ pub fn values(urdf: &Robot) -> Result<(), RobotError> {
         }
         if l.velocity < 0.0 {
             return Err(bad(format!("velocity limit {} is negative", l.velocity)));
+        }
+        if let Some(d) = &joint.dynamics {
+            finite("dynamics", &[d.damping, d.friction]).map_err(bad)?;
+            if d.damping < 0.0 || d.friction < 0.0 {
+                return Err(bad(format!(
+                    "dynamics damping {} friction {}: neither may be negative",
+                    d.damping, d.friction
+                )));
+            }
         }
     }
     Ok(())

@@ -3,6 +3,7 @@
 //! camera are named by a [`RobotMap`] (see [`crate::legs`]); each leg's chain
 //! is read by `leg_chain.rs`.
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use urdf_rs::Robot;
@@ -32,6 +33,12 @@ pub struct RobotDescription {
     /// base's frame (see `urdf_xml.rs` and `urdf_tree.rs`), for a warning
     /// where the robot is named.
     pub notes: Vec<String>,
+    /// Each joint's armature, the rotor inertia its gear reflects onto it
+    /// (kg m^2), by joint name, where the model file gives one (MJCF's
+    /// `armature`; URDF has no place for it). The simulator adds it to the
+    /// joint's inertia, as MuJoCo does; its damping and dry friction are the
+    /// URDF's `<dynamics>`.
+    pub armature: BTreeMap<String, f64>,
 }
 
 impl RobotDescription {
@@ -185,6 +192,7 @@ impl RobotDescription {
             total_mass_kg,
             meshes,
             notes,
+            armature: BTreeMap::new(),
         })
     }
 

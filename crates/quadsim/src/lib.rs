@@ -24,6 +24,7 @@ pub mod fold;
 pub mod gait;
 pub mod heading;
 pub mod ik;
+pub mod joint_dynamics;
 mod leg_chain;
 pub mod legs;
 pub mod mesh;

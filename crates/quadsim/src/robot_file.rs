@@ -270,7 +270,14 @@ impl RobotFile {
                 })?;
         let label = format!("assets/robots/{name}.toml");
         let file = parse(&label, text)?;
-        Self::build(&label, None, text, file, urdf_text.to_string())
+        Self::build(
+            &label,
+            None,
+            text,
+            file,
+            urdf_text.to_string(),
+            BesideUrdf::default(),
+        )
     }
 
     /// A shipped robot's name, or a robot file's path.
@@ -294,10 +301,8 @@ impl RobotFile {
             reason: e.to_string(),
         })?;
         if text.trim_start().starts_with('<') {
-            let (urdf_text, notes) = urdf_text_of(path, text)?;
-            let mut robot = Self::from_bare_urdf(path, urdf_text)?;
-            robot.description.notes.splice(0..0, notes);
-            return Ok(robot);
+            let (urdf_text, beside) = urdf_text_of(path, text)?;
+            return Self::from_bare_urdf(path, urdf_text, beside);
         }
         let file = parse(&label, &text)?;
         let urdf_path = path
@@ -311,16 +316,25 @@ impl RobotFile {
                     reason: format!("its URDF: {e}"),
                 }
             })?;
-        let (urdf_text, notes) = urdf_text_of(&urdf_path, urdf_text)?;
-        let mut robot = Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)?;
-        robot.description.notes.splice(0..0, notes);
-        Ok(robot)
+        let (urdf_text, beside) = urdf_text_of(&urdf_path, urdf_text)?;
+        Self::build(
+            &label,
+            Some(path.to_path_buf()),
+            &text,
+            file,
+            urdf_text,
+            beside,
+        )
     }
 
     /// A bare URDF as a robot: its legs and camera found from its tree
     /// ([`crate::discover`]), the scaled default gait. Its robot file is the
     /// one that says what was found (see [`RobotFile::text`]).
-    fn from_bare_urdf(path: &Path, urdf_text: String) -> Result<Self, RobotError> {
+    fn from_bare_urdf(
+        path: &Path,
+        urdf_text: String,
+        beside: BesideUrdf,
+    ) -> Result<Self, RobotError> {
         let label = path.display().to_string();
         let in_file = |e: RobotError| RobotError::RobotFile {
             file: label.clone(),
@@ -354,7 +368,14 @@ impl RobotFile {
             rpy = map.camera.rpy,
         );
         let file = parse(&label, &text)?;
-        let mut robot = Self::build(&label, Some(path.to_path_buf()), &text, file, urdf_text)?;
+        let mut robot = Self::build(
+            &label,
+            Some(path.to_path_buf()),
+            &text,
+            file,
+            urdf_text,
+            beside,
+        )?;
         if let Some(fit) = &robot.cadence_fit {
             robot.text.push_str(&format!(
                 "\n[gait]\n# Found by the walk test (quadsim::cadence).\n{}cadence = {:?}\n",
@@ -374,6 +395,7 @@ impl RobotFile {
         text: &str,
         file: FileToml,
         urdf_text: String,
+        beside: BesideUrdf,
     ) -> Result<Self, RobotError> {
         let map = RobotMap {
             legs: [
@@ -393,13 +415,12 @@ impl RobotFile {
             .and_then(Path::parent)
             .unwrap_or_else(|| Path::new(""))
             .join(file.urdf.parent().unwrap_or_else(|| Path::new("")));
-        let description =
-            RobotDescription::from_urdf_str_in(&urdf_text, &map, &urdf_dir).map_err(|e| {
-                RobotError::RobotFile {
-                    file: format!("{label} (URDF {})", file.urdf.display()),
-                    reason: e.to_string(),
-                }
+        let mut description = RobotDescription::from_urdf_str_in(&urdf_text, &map, &urdf_dir)
+            .map_err(|e| RobotError::RobotFile {
+                file: format!("{label} (URDF {})", file.urdf.display()),
+                reason: e.to_string(),
             })?;
+        beside.apply(&mut description);
         Self {
             name: file.name,
             path,
@@ -498,11 +519,28 @@ impl RobotFile {
     }
 }
 
+/// What reading a model file into URDF found that URDF cannot say.
+#[derive(Default)]
+struct BesideUrdf {
+    /// What was left out, a line each (see [`RobotDescription::notes`]).
+    notes: Vec<String>,
+    /// The joints' armature (see [`RobotDescription::armature`]).
+    armature: std::collections::BTreeMap<String, f64>,
+}
+
+impl BesideUrdf {
+    /// Gives `description`, read from the URDF, what the model file said beside it.
+    fn apply(self, description: &mut RobotDescription) {
+        description.notes.splice(0..0, self.notes);
+        description.armature = self.armature;
+    }
+}
+
 /// A robot's model file's text as URDF: URDF as it is, MJCF read into URDF
-/// (see [`crate::mjcf`]) with what reading it left out.
-fn urdf_text_of(path: &Path, text: String) -> Result<(String, Vec<String>), RobotError> {
+/// (see [`crate::mjcf`]) with what URDF cannot say.
+fn urdf_text_of(path: &Path, text: String) -> Result<(String, BesideUrdf), RobotError> {
     if !crate::mjcf::is_mjcf(&text) {
-        return Ok((text, Vec::new()));
+        return Ok((text, BesideUrdf::default()));
     }
     let in_file = |e: RobotError| RobotError::RobotFile {
         file: path.display().to_string(),
@@ -514,7 +552,13 @@ fn urdf_text_of(path: &Path, text: String) -> Result<(String, Vec<String>), Robo
             reason: e.to_string(),
         })
     })?;
-    Ok((urdf, model.notes))
+    Ok((
+        urdf,
+        BesideUrdf {
+            notes: model.notes,
+            armature: model.armature,
+        },
+    ))
 }
 
 fn parse(label: &str, text: &str) -> Result<FileToml, RobotError> {

@@ -32,7 +32,7 @@ pub(crate) struct Builder<'a> {
     links: HashSet<String>,
     joints: HashSet<String>,
     camera: bool,
-    armature: bool,
+    armature: BTreeMap<String, f64>,
 }
 
 /// The link a body hangs from, and where its origin is in the parent body.
@@ -55,7 +55,7 @@ impl<'a> Builder<'a> {
             links: HashSet::new(),
             joints: HashSet::new(),
             camera: false,
-            armature: false,
+            armature: BTreeMap::new(),
         }
     }
 
@@ -87,13 +87,10 @@ impl<'a> Builder<'a> {
             root.error("no body of <worldbody> has a free joint (<freejoint/>): a walking robot must be free")
         })?;
         self.body(body, None, "main")?;
-        if self.armature {
-            self.notes
-                .push("the joints' armature (rotor inertia) is not simulated".into());
-        }
         Ok(Mjcf {
             urdf: self.urdf,
             notes: self.notes,
+            armature: self.armature,
         })
     }
 
@@ -244,7 +241,15 @@ impl<'a> Builder<'a> {
         if damping != 0.0 || friction != 0.0 {
             out.dynamics = Some(urdf_rs::Dynamics { damping, friction });
         }
-        self.armature |= number("armature")? != 0.0;
+        let armature = number("armature")?;
+        if !(armature.is_finite() && armature >= 0.0) {
+            return Err(el.error(format!(
+                "armature {armature}: it must be finite and not negative"
+            )));
+        }
+        if armature > 0.0 {
+            self.armature.insert(out.name.clone(), armature);
+        }
         if number("stiffness")? != 0.0 {
             return Err(el.error("a joint spring (stiffness) is not simulated"));
         }

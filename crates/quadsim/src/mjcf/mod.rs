@@ -11,7 +11,7 @@
 //! `<compiler angle meshdir assetdir autolimits eulerseq inertiafromgeom
 //! inertiagrouprange>`, frames by `pos` and `quat`, `euler`, `axisangle`,
 //! `xyaxes` or `zaxis`, `<freejoint>`, hinge joints (`axis range limited
-//! damping frictionloss`), geoms (`type size fromto mesh contype
+//! damping frictionloss armature`: simulated, see [`Mjcf::armature`]), geoms (`type size fromto mesh contype
 //! conaffinity group mass density`), `<mesh file scale>` assets, and the
 //! `joint` actuators (`gear ctrlrange forcerange`). What changes the
 //! mechanics and is not simulated (a tendon, an equality constraint, a ball
@@ -25,7 +25,7 @@ mod frames;
 mod inertia;
 mod tree;
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use urdf_rs::Robot;
@@ -59,6 +59,9 @@ pub struct Mjcf {
     pub urdf: Robot,
     /// What was left out or read differently from MuJoCo, a line each.
     pub notes: Vec<String>,
+    /// Each hinge's `armature` (rotor inertia reflected through its gear,
+    /// kg m^2) by the URDF joint's name, where not 0: URDF has no place for it.
+    pub armature: BTreeMap<String, f64>,
 }
 
 /// Whether `text` is MJCF: its first element is `<mujoco>`.

@@ -16,6 +16,7 @@ use crate::description::RobotDescription;
 use crate::error::{RobotError, SimConfigError, SimError};
 use crate::heading::HeadingKeeper;
 use crate::ik::LegAngles;
+use crate::joint_dynamics::JointDynamics;
 use crate::servo::ServoSetpoints;
 use crate::vision::{Camera, Frame};
 use crate::walk::WalkEngine;
@@ -229,6 +230,13 @@ impl QuadrupedSim {
                 .iter()
                 .filter_map(|name| body_of(name))
                 .collect();
+        // The file's joint dynamics, by the multibody joint they act on.
+        let joint_dynamics: Vec<(MultibodyJointHandle, JointDynamics)> = description
+            .urdf
+            .joints
+            .iter()
+            .filter_map(|j| Some((joint_of(&j.name)?, JointDynamics::of(description, j)?)))
+            .collect();
         let mut joints = Vec::new();
         let mut urdf_limits = Vec::new();
         for leg in &description.legs {
@@ -294,7 +302,7 @@ impl QuadrupedSim {
             blew_up_at_s: None,
             link_weights: Vec::new(),
         };
-        sim.set_joint_damping();
+        sim.set_joint_dynamics(&joint_dynamics);
         sim.scale_limits();
         sim.pose_joints(&initial_angles);
         sim.motorise_joints();
@@ -303,13 +311,29 @@ impl QuadrupedSim {
     }
 
     /// Sets the damping of every rotational degree of freedom (those rapier
-    /// damps by default) to the configured value, and how the multibody is
-    /// stepped.
-    fn set_joint_damping(&mut self) {
+    /// damps by default) to the configured value, adds the model file's own
+    /// joint dynamics (see [`JointDynamics`]) on top, and sets how the
+    /// multibody is stepped.
+    fn set_joint_dynamics(&mut self, dynamics: &[(MultibodyJointHandle, JointDynamics)]) {
         let damping = self.config.joint_damping_nm_s_per_rad as Real;
+        let dofs: Vec<(usize, usize, JointDynamics)> = dynamics
+            .iter()
+            .filter_map(|(h, d)| {
+                let (mb, id) = self.world.multibody_joints.get(*h)?;
+                let link = mb.link(id)?;
+                Some((link.assembly_id(), link.joint().ndofs(), *d))
+            })
+            .collect();
         if let Some((mb, _)) = self.world.multibody_joints.get_mut(self.joints[0][0]) {
             for d in mb.damping_mut().iter_mut().filter(|d| **d != 0.0) {
                 *d = damping;
+            }
+            for (first, n, d) in dofs {
+                for i in first..first + n {
+                    mb.damping_mut()[i] += d.damping as Real;
+                    mb.frictions_mut()[i] = d.friction as Real;
+                    mb.armature_mut()[i] = d.armature as Real;
+                }
             }
             mb.set_dynamics(self.config.multibody.rapier());
         }
