@@ -35,6 +35,7 @@ pub mod scale;
 pub mod scene;
 pub mod servo;
 pub mod sim;
+pub mod stance;
 mod urdf_tree;
 mod urdf_xml;
 pub mod vision;

@@ -420,7 +420,8 @@ impl RobotFile {
                 file: format!("{label} (URDF {})", file.urdf.display()),
                 reason: e.to_string(),
             })?;
-        beside.apply(&mut description);
+        let mut gait = file.gait;
+        beside.apply(&mut description, &mut gait);
         Self {
             name: file.name,
             path,
@@ -428,7 +429,7 @@ impl RobotFile {
             urdf_text,
             urdf_dir,
             description,
-            gait: file.gait,
+            gait,
             cadence_fit: None,
         }
         .checked(label)?
@@ -526,13 +527,44 @@ struct BesideUrdf {
     notes: Vec<String>,
     /// The joints' armature (see [`RobotDescription::armature`]).
     armature: std::collections::BTreeMap<String, f64>,
+    /// The joints' standing angles (see [`crate::mjcf::Mjcf::standing`]).
+    standing: std::collections::BTreeMap<String, f64>,
 }
 
 impl BesideUrdf {
-    /// Gives `description`, read from the URDF, what the model file said beside it.
-    fn apply(self, description: &mut RobotDescription) {
+    /// Gives `description`, read from the URDF, what the model file said
+    /// beside it, and `gait` the standing pose's stance where it gives none.
+    fn apply(self, description: &mut RobotDescription, gait: &mut GaitOverrides) {
         description.notes.splice(0..0, self.notes);
         description.armature = self.armature;
+        if self.standing.is_empty() {
+            return;
+        }
+        let Some(stance) = crate::stance::Stance::at(description, &self.standing) else {
+            description.notes.push(
+                "the keyframe's pose does not put every foot below its hip: the robot stands in \
+                 its gait's own pose"
+                    .into(),
+            );
+            return;
+        };
+        let mut used = false;
+        for p in [
+            &mut gait.idle,
+            &mut gait.fast_forwards,
+            &mut gait.fast_backwards,
+        ] {
+            used |= p.body_height_m.is_none() || p.stance_width_m.is_none();
+            p.body_height_m.get_or_insert(stance.body_height_m);
+            p.stance_width_m.get_or_insert(stance.stance_width_m);
+        }
+        if used {
+            description.notes.push(format!(
+                "the gait stands as the keyframe does: feet {:.4} m below the hips and {:.4} m \
+                 outwards (body_height_m, stance_width_m; a robot file's [gait] can say otherwise)",
+                stance.body_height_m, stance.stance_width_m
+            ));
+        }
     }
 }
 
@@ -557,6 +589,7 @@ fn urdf_text_of(path: &Path, text: String) -> Result<(String, BesideUrdf), Robot
         BesideUrdf {
             notes: model.notes,
             armature: model.armature,
+            standing: model.standing,
         },
     ))
 }

@@ -33,6 +33,10 @@ pub(crate) struct Builder<'a> {
     joints: HashSet<String>,
     camera: bool,
     armature: BTreeMap<String, f64>,
+    /// The robot's joints (URDF names) in MuJoCo's qpos order.
+    pub qpos_joints: Vec<String>,
+    /// Whether a body of the world left out has a joint.
+    pub other_joints: bool,
 }
 
 /// The link a body hangs from, and where its origin is in the parent body.
@@ -56,6 +60,8 @@ impl<'a> Builder<'a> {
             joints: HashSet::new(),
             camera: false,
             armature: BTreeMap::new(),
+            qpos_joints: Vec::new(),
+            other_joints: false,
         }
     }
 
@@ -71,11 +77,14 @@ impl<'a> Builder<'a> {
             for c in &world.children {
                 match c.tag.as_str() {
                     "body" if robot.is_none() && self.is_free(c)? => robot = Some(c),
-                    "body" | "geom" | "camera" => self.notes.push(format!(
-                        "left out the world's <{}> at {}: only the robot (the body with a free \
+                    "body" | "geom" | "camera" => {
+                        self.other_joints |= super::keyframe::has_joint(c);
+                        self.notes.push(format!(
+                            "left out the world's <{}> at {}: only the robot (the body with a free \
                          joint) is simulated, on the testbed's own floor",
-                        c.tag, c.at
-                    )),
+                            c.tag, c.at
+                        ))
+                    }
                     t if LEFT_OUT.contains(&t) => {}
                     _ => {
                         return Err(c.error("is not an element of <worldbody> the simulator reads"));
@@ -87,10 +96,14 @@ impl<'a> Builder<'a> {
             root.error("no body of <worldbody> has a free joint (<freejoint/>): a walking robot must be free")
         })?;
         self.body(body, None, "main")?;
+        let (standing, note) =
+            super::keyframe::standing(root, &self.qpos_joints, self.other_joints)?;
+        self.notes.extend(note);
         Ok(Mjcf {
             urdf: self.urdf,
             notes: self.notes,
             armature: self.armature,
+            standing,
         })
     }
 
@@ -212,6 +225,7 @@ impl<'a> Builder<'a> {
             _ => return Err(el.error(format!("a {kind} joint is not supported (hinge or slide)"))),
         };
         out.name = self.name(el, attrs.get("name"), format!("{child}_joint"))?;
+        self.qpos_joints.push(out.name.clone());
         let axis = numbers::<3>(el, &attrs, "axis")?.unwrap_or([0.0, 0.0, 1.0]);
         let n = axis.iter().map(|v| v * v).sum::<f64>().sqrt();
         if n.is_nan() || n <= 1e-12 {

@@ -17,12 +17,13 @@
 //! mechanics and is not simulated (a tendon, an equality constraint, a ball
 //! or slide joint, an ellipsoid's collisions) is refused, naming the element
 //! and its line; what does not (lights, materials, sensors, visual geoms,
-//! keyframes, the solver's `<option>`) is left out, the mechanical ones with
-//! a note.
+//! the solver's `<option>`) is left out, the mechanical ones with a note. The
+//! keyframe `home` (else the first) gives the standing pose ([`Mjcf::standing`]).
 
 mod body;
 mod frames;
 mod inertia;
+mod keyframe;
 mod tree;
 
 use std::collections::{BTreeMap, HashMap};
@@ -62,6 +63,11 @@ pub struct Mjcf {
     /// Each hinge's `armature` (rotor inertia reflected through its gear,
     /// kg m^2) by the URDF joint's name, where not 0: URDF has no place for it.
     pub armature: BTreeMap<String, f64>,
+    /// The joints' standing angles (rad) by the URDF joint's name, from the
+    /// keyframe `home` (else the first), if it could be read (see
+    /// [`keyframe`]): the gait stands its feet where they are at these angles
+    /// (see [`crate::stance`]).
+    pub standing: BTreeMap<String, f64>,
 }
 
 /// Whether `text` is MJCF: its first element is `<mujoco>`.
@@ -87,7 +93,14 @@ pub fn is_mjcf(text: &str) -> bool {
 }
 
 /// The top-level elements: read, left out with a note, or refused.
-const READ: [&str; 5] = ["compiler", "default", "asset", "worldbody", "actuator"];
+const READ: [&str; 6] = [
+    "compiler",
+    "default",
+    "asset",
+    "worldbody",
+    "actuator",
+    "keyframe",
+];
 const LEFT_OUT: [&str; 7] = [
     "option",
     "size",
@@ -97,7 +110,7 @@ const LEFT_OUT: [&str; 7] = [
     "sensor",
     "extension",
 ];
-const NOTED: [&str; 2] = ["keyframe", "contact"];
+const NOTED: [&str; 1] = ["contact"];
 const REFUSED: [&str; 3] = ["tendon", "equality", "deformable"];
 
 /// Reads an MJCF model (the file and what it includes).
@@ -115,13 +128,9 @@ pub fn read(path: &Path) -> Result<Mjcf, RobotError> {
         }
         if NOTED.contains(&tag) && !el.children.is_empty() {
             notes.push(format!(
-                "left out <{tag}> at {}: {}",
-                el.at,
-                if tag == "keyframe" {
-                    "the robot stands in its gait's own pose"
-                } else {
-                    "the simulator's own contact rules apply (a link never collides with its parent)"
-                }
+                "left out <{tag}> at {}: the simulator's own contact rules apply (a link never \
+                 collides with its parent)",
+                el.at
             ));
         }
         let known = READ.contains(&tag)
