@@ -104,6 +104,7 @@ impl<'a> Builder<'a> {
             notes: self.notes,
             armature: self.armature,
             standing,
+            servo_kp_nm_per_rad: None,
         })
     }
 

@@ -68,6 +68,11 @@ pub struct Mjcf {
     /// [`keyframe`]): the gait stands its feet where they are at these angles
     /// (see [`crate::stance`]).
     pub standing: BTreeMap<String, f64>,
+    /// The actuators' gain, N m/rad, where every actuator is a `position`
+    /// servo with the same joint-space `kp` (times its gear squared). Named
+    /// in a note, not used: the testbed's servos keep their scaled gains
+    /// (the book's MJCF page says why).
+    pub servo_kp_nm_per_rad: Option<f64>,
 }
 
 /// Whether `text` is MJCF: its first element is `<mujoco>`.
@@ -256,6 +261,9 @@ impl Model {
 /// joint no actuator drives, or one with no limit, is limited by nothing.
 fn actuators(root: &Element, model: &Model, robot: &mut Mjcf) -> Result<(), MjcfError> {
     let mut any = false;
+    // Each actuator's joint-space position gain (a `position` actuator's
+    // `kp` times its gear squared), `None` for any other kind.
+    let mut gains: Vec<Option<f64>> = Vec::new();
     for act in root.all("actuator").flat_map(|a| a.children.iter()) {
         if !tree::ACTUATORS.contains(&act.tag.as_str()) {
             return Err(act.error(
@@ -300,14 +308,41 @@ fn actuators(root: &Element, model: &Model, robot: &mut Mjcf) -> Result<(), Mjcf
         if let Some(e) = effort.filter(|e| *e > 0.0) {
             j.limit.effort = e;
         }
+        gains.push(if act.tag == "position" {
+            // MuJoCo's default kp is 1.
+            let [kp] = frames::numbers::<1>(act, &attrs, "kp")?.unwrap_or([1.0]);
+            if kp <= 0.0 {
+                return Err(act.error(format!("kp {kp}: a position servo's gain must be positive")));
+            }
+            Some(kp * gear * gear)
+        } else {
+            None
+        });
         any = true;
     }
-    if any {
-        robot.notes.push(
-            "the actuators' force limits are the joints' effort limits; the testbed's own position \
-             servos drive the joints"
-                .into(),
-        );
+    if !any {
+        return Ok(());
     }
+    let first = gains[0];
+    robot.servo_kp_nm_per_rad = first.filter(|_| gains.iter().all(|g| *g == first));
+    robot.notes.push(
+        match (robot.servo_kp_nm_per_rad, gains.iter().any(Option::is_some)) {
+            (Some(kp), _) => format!(
+                "the actuators' force limits are the joints' effort limits; their gain, kp {kp} N \
+             m/rad, is not the servos': the testbed's own servos, with gains scaled from the \
+             ERS-7's, drive the joints (`--set servo.kp={kp}` gives them the file's gain)"
+            ),
+            (None, true) => {
+                "the actuators' force limits are the joints' effort limits; their kinds or \
+             gains differ, so the testbed's own servos, with its scaled gains, drive the joints"
+                    .into()
+            }
+            (None, false) => {
+                "the actuators' force limits are the joints' effort limits; the testbed's \
+             own position servos drive the joints"
+                    .into()
+            }
+        },
+    );
     Ok(())
 }

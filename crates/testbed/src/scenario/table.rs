@@ -65,7 +65,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 26] = [
+pub(crate) const SETTINGS: [Entry; 28] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -210,6 +210,16 @@ pub(crate) const SETTINGS: [Entry; 26] = [
         "world.start_distance_m",
         "the robot's start, m from the beacon",
         start_distance_m
+    ),
+    world_number!(
+        "servo.kp",
+        "the servos' stiffness, N m/rad (the robot's: the ERS-7's 12, scaled with its size)",
+        servo.kp_nm_per_rad
+    ),
+    world_number!(
+        "servo.kd",
+        "the servos' damping, N m s/rad (the robot's: the ERS-7's 0.15, scaled with its size)",
+        servo.kd_nm_s_per_rad
     ),
     world_number!(
         "servo.torque_scale",
