@@ -80,6 +80,7 @@ pub fn main(args: Args) -> Result<()> {
         rayon::current_num_threads()
     );
     let bar = crate::progress_bar(seeds.len() as u64, "trials");
+    let trials_started = std::time::Instant::now();
     let write_errors = Mutex::new(Vec::new());
     let results = experiment::run_trials(&scenario, &models, &seeds, &|trial| {
         if let Err(e) = run_dir::write_trial(&out, &scenario, &models, &made_by, trial) {
@@ -90,6 +91,12 @@ pub fn main(args: Args) -> Result<()> {
         bar.inc(1);
     });
     bar.finish();
+    println!(
+        "  {} trials in {:.2} s wall on {} threads",
+        seeds.len(),
+        trials_started.elapsed().as_secs_f64(),
+        rayon::current_num_threads()
+    );
     if let Some(e) = write_errors.lock().ok().and_then(|v| v.first().cloned()) {
         bail!("writing a trial's files: {e}");
     }
