@@ -69,6 +69,10 @@ pub struct TrialArgs {
     /// The learner; `list` prints the available ones [learner.name].
     #[arg(long)]
     pub learner: Option<String>,
+    /// The training behaviour, what chooses each walk command; `list`
+    /// prints the available ones [behaviour.name].
+    #[arg(long)]
+    pub behaviour: Option<String>,
     /// What is learned from what: simultaneous, sensor-from-action or
     /// action-from-sensor [trial.mode].
     #[arg(long)]
@@ -90,6 +94,9 @@ impl TrialArgs {
         }
         if let Some(l) = &self.learner {
             s.push(format!("learner.name={l}"));
+        }
+        if let Some(b) = &self.behaviour {
+            s.push(format!("behaviour.name={b}"));
         }
         if let Some(m) = &self.mode {
             s.push(format!("trial.mode={m}"));
@@ -203,6 +210,16 @@ pub fn list_learners_if_asked(learner: Option<&str>) -> bool {
         return false;
     }
     print!("{}", testbed::learners::describe(None));
+    true
+}
+
+/// If `--behaviour list` was asked for, prints the behaviours, a line each,
+/// and returns true.
+pub fn list_behaviours_if_asked(behaviour: Option<&str>) -> bool {
+    if behaviour != Some("list") {
+        return false;
+    }
+    print!("{}", testbed::behaviour::registry::describe());
     true
 }
 

@@ -29,13 +29,11 @@ fn walk(robot: &str, seconds: f64, seed: u64) -> Walk {
     // The beacon scales with the robot, so the turning readings do not.
     let k_px_m = K_PX_M * scale.length;
     let mut behaviour = TrainingBehaviour::new(
-        BehaviourConfig {
-            max_command: 300.0 * scale.speed(),
-            hold_s: 3.0,
-            near_obs_px: k_px_m / (1.2 * scale.length),
-            far_obs_px: k_px_m / (3.6 * scale.length),
-            turn_median_of: testbed::behaviour::TURN_MEDIAN_OF,
-        },
+        BehaviourConfig::paper(
+            300.0 * scale.speed(),
+            k_px_m / (1.2 * scale.length),
+            k_px_m / (3.6 * scale.length),
+        ),
         seeds::rng(seed, Stream::Behaviour),
         Phase::Forwards,
     );

@@ -46,6 +46,7 @@ pub struct Args {
 /// Runs the command with its parsed flags.
 pub fn main(args: Args) -> Result<()> {
     if crate::list_learners_if_asked(args.trials.learner.as_deref())
+        || crate::list_behaviours_if_asked(args.trials.behaviour.as_deref())
         || crate::list_settings_if_asked(&args.scenario.set, args.trials.learner.as_deref())
     {
         return Ok(());
@@ -72,11 +73,12 @@ pub fn main(args: Args) -> Result<()> {
     run_dir::write_reference(&out, &models)?;
 
     println!(
-        "Running {} trials of {:.0} s ({:?}, learner {}) on {} threads...",
+        "Running {} trials of {:.0} s ({:?}, learner {}, behaviour {}) on {} threads...",
         seeds.len(),
         scenario.duration_s,
         scenario.mode,
         learners::display_name(&scenario.learner_name),
+        scenario.behaviour_name,
         rayon::current_num_threads()
     );
     let bar = crate::progress_bar(seeds.len() as u64, "trials");

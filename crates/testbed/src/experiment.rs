@@ -55,6 +55,8 @@ pub fn behaviour_for(scenario: &Scenario, models: &MeasuredModels) -> BehaviourC
         _ => (near.1, far.1),
     };
     BehaviourConfig {
+        name: scenario.behaviour_name,
+        action_degree: scenario.learner.action_degree,
         max_command: scenario.max_command(),
         hold_s: 3.0,
         near_obs_px,

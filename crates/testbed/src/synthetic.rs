@@ -93,13 +93,7 @@ pub fn run_trial(
     config: &SyntheticTrialConfig,
     seed: u64,
 ) -> Result<SyntheticOutcome, EventError> {
-    let behaviour_config = BehaviourConfig {
-        max_command: 300.0,
-        hold_s: 3.0,
-        near_obs_px: true_obs_px(1100.0),
-        far_obs_px: true_obs_px(3800.0),
-        turn_median_of: crate::behaviour::TURN_MEDIAN_OF,
-    };
+    let behaviour_config = BehaviourConfig::paper(300.0, true_obs_px(1100.0), true_obs_px(3800.0));
     let mut behaviour = TrainingBehaviour::new(
         behaviour_config,
         seeds::rng(seed, Stream::Behaviour),

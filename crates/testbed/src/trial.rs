@@ -10,7 +10,7 @@ use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
 use rand::Rng;
 use scasm::{CalibrationLearner, Event, EventError, Polynomial};
 
-use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
+use crate::behaviour::{Behaviour, BehaviourConfig};
 pub use crate::blanks::Blanks;
 use crate::floor::{Floor, Sample};
 use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
@@ -224,18 +224,19 @@ pub struct TrialRunner {
 }
 
 impl TrialRunner {
-    /// Builds the world for a trial of the paper's training behaviour.
+    /// Builds the world for a trial of the training behaviour
+    /// `config.behaviour` names (see [`crate::behaviour::registry`]).
     pub fn new(
         description: &RobotDescription,
         sim_config: SimConfig,
         config: TrialConfig,
     ) -> Result<Self, TrialError> {
-        let behaviour = TrainingBehaviour::new(
+        let behaviour = crate::behaviour::registry::build(
             config.behaviour,
             seeds::rng(config.seed, Stream::Behaviour),
-            Phase::Forwards,
-        );
-        Self::with_behaviour(description, sim_config, config, Box::new(behaviour))
+        )
+        .map_err(TrialError::Recording)?;
+        Self::with_behaviour(description, sim_config, config, behaviour)
     }
 
     /// Builds the world for a trial of another behaviour (`config.behaviour` is

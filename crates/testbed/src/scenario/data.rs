@@ -77,6 +77,9 @@ pub struct Scenario {
     pub sim: SimConfig,
     /// The learner's name (see [`crate::learners`]).
     pub learner_name: String,
+    /// The training behaviour's name (`behaviour.name`, see
+    /// [`crate::behaviour::registry`]).
+    pub behaviour_name: &'static str,
     /// The shared learner settings (`learner.gamma`, the degrees, ...).
     pub learner: ScasmConfig,
     /// Learners' own settings as set, by full key (`learner.batch-ml.gamma`);
@@ -129,6 +132,7 @@ impl Scenario {
             robot_file: None,
             sim: SimConfig::default(),
             learner_name: crate::learners::registry::DEFAULT.into(),
+            behaviour_name: crate::behaviour::registry::DEFAULT,
             learner: ScasmConfig::default(),
             learner_own: BTreeMap::new(),
             answer_timeout_s: crate::learners::exec::ANSWER_TIMEOUT_S,

@@ -65,7 +65,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 28] = [
+pub(crate) const SETTINGS: [Entry; 29] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -132,6 +132,17 @@ pub(crate) const SETTINGS: [Entry; 28] = [
             Ok(())
         },
         get: |s| toml::Value::String(s.learner_name.clone()),
+    },
+    Entry {
+        key: "behaviour.name",
+        kind: Kind::Text,
+        doc: "the training behaviour: what chooses each walk command (--behaviour list)",
+        range: Some("a behaviour's name"),
+        set: |s, v| {
+            s.behaviour_name = crate::behaviour::registry::resolve(v)?.name;
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.behaviour_name.into()),
     },
     Entry {
         key: "exec.answer_timeout_s",

@@ -167,13 +167,7 @@ fn trial(
     let mut learner =
         ExecLearner::start(program, &Values(own.to_vec()), &shared, answer_timeout_s)?;
     let mut behaviour = TrainingBehaviour::new(
-        BehaviourConfig {
-            max_command: 300.0,
-            hold_s: 3.0,
-            near_obs_px: true_obs_px(1100.0),
-            far_obs_px: true_obs_px(3800.0),
-            turn_median_of: crate::behaviour::TURN_MEDIAN_OF,
-        },
+        BehaviourConfig::paper(300.0, true_obs_px(1100.0), true_obs_px(3800.0)),
         seeds::rng(0, Stream::Behaviour),
         Phase::Forwards,
     );

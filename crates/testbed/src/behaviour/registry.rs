@@ -1,0 +1,89 @@
+//! The training behaviours a run can name (`--behaviour NAME`, setting
+//! `behaviour.name`; `--behaviour list` prints them): each a declaration of
+//! its name, what it does and how a trial builds it. Every behaviour is told
+//! the same [`BehaviourConfig`] (the paper's turning thresholds, the largest
+//! command, how long a command is held, the action model's degree) and draws
+//! from the trial's behaviour stream of random numbers; it sees the robot's
+//! readings, never the ground truth.
+
+use rand_chacha::ChaCha8Rng;
+
+use super::paper::Draw;
+use super::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
+
+/// A behaviour a run can name.
+#[derive(Debug, Clone, Copy)]
+pub struct Declaration {
+    /// Its name.
+    pub name: &'static str,
+    /// What it does, in a line.
+    pub doc: &'static str,
+    /// The behaviour for a trial, starting forwards.
+    pub build: fn(BehaviourConfig, ChaCha8Rng) -> Box<dyn Behaviour>,
+}
+
+/// The behaviour a run uses unless told otherwise.
+pub const DEFAULT: &str = "paper";
+
+/// Every behaviour, the default first.
+pub const BEHAVIOURS: [Declaration; 2] = [
+    Declaration {
+        name: "paper",
+        doc: "the paper's (section II): commands drawn uniformly from [0, max] forwards and \
+              [-max, 0] backwards, each held 3 s, turning round when the beacon looks too big \
+              or too small",
+        build: |config, rng| Box::new(TrainingBehaviour::new(config, rng, Phase::Forwards)),
+    },
+    Declaration {
+        name: "design",
+        doc: "the paper's walk with each command's magnitude drawn from the I-optimal design for \
+              the action model's degree over the paper's 31 commands (the least average \
+              prediction variance), not uniformly",
+        build: |config, rng| {
+            let draw = Draw::Design(super::design::one_phase(&super::design::i_optimal(
+                config.action_degree,
+            )));
+            Box::new(TrainingBehaviour::drawing(
+                config,
+                draw,
+                rng,
+                Phase::Forwards,
+            ))
+        },
+    },
+];
+
+/// The behaviour named `name`, or an error listing them.
+pub fn resolve(name: &str) -> Result<&'static Declaration, String> {
+    BEHAVIOURS.iter().find(|b| b.name == name).ok_or_else(|| {
+        format!(
+            "no behaviour `{name}`: one of {} (--behaviour list)",
+            names().collect::<Vec<_>>().join(", ")
+        )
+    })
+}
+
+/// Every behaviour's name.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    BEHAVIOURS.iter().map(|b| b.name)
+}
+
+/// Every behaviour, a line each: its name and what it does.
+pub fn describe() -> String {
+    BEHAVIOURS
+        .iter()
+        .map(|b| {
+            let default = if b.name == DEFAULT {
+                " (the default)"
+            } else {
+                ""
+            };
+            format!("{:<8} {}{default}\n", b.name, b.doc)
+        })
+        .collect()
+}
+
+/// The behaviour `config` names, for a trial whose behaviour stream is `rng`.
+pub fn build(config: BehaviourConfig, rng: ChaCha8Rng) -> Result<Box<dyn Behaviour>, String> {
+    Ok((resolve(config.name)?.build)(config, rng))
+}
