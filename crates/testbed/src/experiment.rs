@@ -57,6 +57,7 @@ pub fn behaviour_for(scenario: &Scenario, models: &MeasuredModels) -> BehaviourC
     BehaviourConfig {
         name: scenario.behaviour_name,
         action_degree: scenario.learner.action_degree,
+        design_extra_degree: scenario.behaviour_design_extra_degree,
         max_command: scenario.max_command(),
         hold_s: 3.0,
         near_obs_px,

@@ -64,8 +64,8 @@ pub struct Mjcf {
     /// kg m^2) by the URDF joint's name, where not 0: URDF has no place for it.
     pub armature: BTreeMap<String, f64>,
     /// The joints' standing angles (rad) by the URDF joint's name, from the
-    /// keyframe `home` (else the first), if it could be read (see
-    /// [`keyframe`]): the gait stands its feet where they are at these angles
+    /// keyframe `home` (else the first), if it could be read (its `qpos` in
+    /// MuJoCo's order, the robot's alone): the gait stands its feet where they are at these angles
     /// (see [`crate::stance`]).
     pub standing: BTreeMap<String, f64>,
     /// The actuators' gain, N m/rad, where every actuator is a `position`

@@ -22,6 +22,10 @@ pub struct BehaviourConfig {
     /// The action model's degree, for a behaviour that designs its commands
     /// for it (the learner's `action_degree`).
     pub action_degree: usize,
+    /// How many degrees richer than the action model the `design`
+    /// behaviour's model is (`behaviour.design_extra_degree`, see
+    /// [`design`]).
+    pub design_extra_degree: usize,
     /// Largest command magnitude (forwards phases pick in `[0, max]`, backwards in `[-max, 0]`).
     pub max_command: f64,
     /// How long each command is held, s.
@@ -42,6 +46,7 @@ impl BehaviourConfig {
         Self {
             name: registry::DEFAULT,
             action_degree: scasm::ScasmConfig::default().action_degree,
+            design_extra_degree: design::EXTRA_DEGREE,
             max_command,
             hold_s: 3.0,
             near_obs_px,

@@ -36,12 +36,12 @@ pub const BEHAVIOURS: [Declaration; 2] = [
     },
     Declaration {
         name: "design",
-        doc: "the paper's walk with each command's magnitude drawn from the I-optimal design for \
-              the action model's degree over the paper's 31 commands (the least average \
-              prediction variance), not uniformly",
+        doc: "the paper's walk with each command's magnitude drawn from the I-optimal design (the \
+              least average prediction variance over the paper's 31 commands) for a polynomial \
+              behaviour.design_extra_degree degrees above the action model's, not uniformly",
         build: |config, rng| {
             let draw = Draw::Design(super::design::one_phase(&super::design::i_optimal(
-                config.action_degree,
+                config.action_degree + config.design_extra_degree,
             )));
             Box::new(TrainingBehaviour::drawing(
                 config,

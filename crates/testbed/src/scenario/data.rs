@@ -80,6 +80,8 @@ pub struct Scenario {
     /// The training behaviour's name (`behaviour.name`, see
     /// [`crate::behaviour::registry`]).
     pub behaviour_name: &'static str,
+    /// The `design` behaviour's extra degree (`behaviour.design_extra_degree`).
+    pub behaviour_design_extra_degree: usize,
     /// The shared learner settings (`learner.gamma`, the degrees, ...).
     pub learner: ScasmConfig,
     /// Learners' own settings as set, by full key (`learner.batch-ml.gamma`);
@@ -133,6 +135,7 @@ impl Scenario {
             sim: SimConfig::default(),
             learner_name: crate::learners::registry::DEFAULT.into(),
             behaviour_name: crate::behaviour::registry::DEFAULT,
+            behaviour_design_extra_degree: crate::behaviour::design::EXTRA_DEGREE,
             learner: ScasmConfig::default(),
             learner_own: BTreeMap::new(),
             answer_timeout_s: crate::learners::exec::ANSWER_TIMEOUT_S,

@@ -65,7 +65,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 29] = [
+pub(crate) const SETTINGS: [Entry; 30] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -143,6 +143,24 @@ pub(crate) const SETTINGS: [Entry; 29] = [
             Ok(())
         },
         get: |s| toml::Value::String(s.behaviour_name.into()),
+    },
+    Entry {
+        key: "behaviour.design_extra_degree",
+        kind: Kind::Count,
+        doc: "the design behaviour's polynomial: this many degrees above the action model's",
+        range: Some("0 to 8"),
+        set: |s, v| {
+            let n: usize = count(v)?;
+            if n > crate::behaviour::design::MAX_EXTRA_DEGREE {
+                return Err(format!(
+                    "{n} is more than {}",
+                    crate::behaviour::design::MAX_EXTRA_DEGREE
+                ));
+            }
+            s.behaviour_design_extra_degree = n;
+            Ok(())
+        },
+        get: |s| toml::Value::Integer(s.behaviour_design_extra_degree as i64),
     },
     Entry {
         key: "exec.answer_timeout_s",
