@@ -96,3 +96,44 @@ fn behaviour_name_takes_a_declared_behaviour_and_refuses_others() {
         listed.lines().count() == registry::BEHAVIOURS.len() && listed.contains("(the default)")
     );
 }
+
+#[test]
+fn a_world_is_shared_only_by_scenarios_whose_behaviours_walk_the_same() {
+    let paper = Scenario::paper().expect("scenario");
+    let key = |s: &Scenario| experiment::world_key(s, 7);
+    let mut design = paper.clone();
+    design.set("behaviour.name=design").expect("declared");
+    assert_ne!(key(&paper), key(&design));
+    // The paper's draws do not read the action degree; the design's do.
+    let mut paper_cubic = paper.clone();
+    paper_cubic
+        .set("learner.action_degree=3")
+        .expect("a degree");
+    assert_eq!(key(&paper), key(&paper_cubic));
+    let mut design_cubic = design.clone();
+    design_cubic
+        .set("learner.action_degree=3")
+        .expect("a degree");
+    assert_ne!(key(&design), key(&design_cubic));
+    // Degree 3 and one more extra degree is the same design as degree 4.
+    design_cubic
+        .set("behaviour.design_extra_degree=5")
+        .expect("an extra degree");
+    assert_eq!(key(&design), key(&design_cubic));
+}
+
+#[test]
+fn the_benchmark_runs_each_scenario_once_per_behaviour() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(testbed::benchmark::SUITE_DIR);
+    let suite = testbed::benchmark::load_suite(&dir, &["default".into()], &[]).expect("the suite");
+    let same = testbed::benchmark::with_behaviours(suite.clone(), &[]).expect("unchanged");
+    assert_eq!(same.len(), 1);
+    let both =
+        testbed::benchmark::with_behaviours(suite.clone(), &["paper".into(), "design".into()])
+            .expect("two");
+    let names: Vec<&str> = both.iter().map(|s| s.name.as_str()).collect();
+    assert_eq!(names, ["default+paper", "default+design"]);
+    assert_eq!(both[1].scenario.behaviour_name, "design");
+    let e = testbed::benchmark::with_behaviours(suite, &["wander".into()]).expect_err("unknown");
+    assert!(e.to_string().contains("paper, design"), "{e}");
+}

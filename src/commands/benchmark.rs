@@ -5,7 +5,7 @@
 //! to the best possible polynomials), and each scenario's config-<name>.toml.
 //!
 //! `cargo run --release --example benchmark -- [--learners a,b] [--scenarios x,y]
-//!  [--seeds A..B] [--out DIR]`
+//!  [--behaviours p,q] [--seeds A..B] [--out DIR]`
 
 use std::path::PathBuf;
 
@@ -24,6 +24,11 @@ pub struct Args {
     /// Scenarios of the suite by name, comma-separated (default: all).
     #[arg(long, value_delimiter = ',')]
     scenarios: Vec<String>,
+    /// Training behaviours, comma-separated: each scenario runs once per
+    /// behaviour, named SCENARIO+BEHAVIOUR (default: each scenario's own;
+    /// `list` prints them) [behaviour.name].
+    #[arg(long, value_delimiter = ',')]
+    behaviours: Vec<String>,
     /// Seeds as a range A..B, B excluded.
     #[arg(long, default_value = "0..5")]
     seeds: String,
@@ -66,6 +71,10 @@ pub fn main(args: Args) -> Result<()> {
         crate::list_learners_if_asked(Some("list"));
         return Ok(());
     }
+    if args.behaviours.iter().any(|b| b == "list") {
+        crate::list_behaviours_if_asked(Some("list"));
+        return Ok(());
+    }
     let specs: Vec<String> = if args.learners.is_empty() {
         learners::names().map(String::from).collect()
     } else {
@@ -85,6 +94,7 @@ pub fn main(args: Args) -> Result<()> {
         learners::resolve(spec).map_err(|e| anyhow::anyhow!("--learners: {e}"))?;
     }
     let suite = benchmark::load_suite(&args.suite, &args.scenarios, &settings)?;
+    let suite = benchmark::with_behaviours(suite, &args.behaviours)?;
     let out = crate::create_run_dir(args.out.as_deref(), "benchmark")?;
     let made_by = Provenance::current();
     for s in &suite {

@@ -286,12 +286,25 @@ pub struct Job<'a> {
 }
 
 /// What a recording depends on: the robot, world and camera (the reference
-/// key), the behaviour (set from the reference), the trial's length, its
-/// blanked intervals, its changes of the world, and its seed.
-/// Jobs with the same key can share one recording, whatever their learners.
+/// key), the behaviour (its thresholds set from the reference; which one it
+/// is and what it reads, [`crate::behaviour::Declaration::key`]), the
+/// trial's length, its blanked intervals, its changes of the world, and its
+/// seed. Jobs with the same key can share one recording, whatever their
+/// learners.
 pub fn world_key(scenario: &Scenario, seed: u64) -> String {
+    let behaviour = crate::behaviour::resolve(scenario.behaviour_name).map_or_else(
+        |e| e,
+        |d| {
+            (d.key)(&BehaviourConfig {
+                name: scenario.behaviour_name,
+                action_degree: scenario.learner.action_degree,
+                design_extra_degree: scenario.behaviour_design_extra_degree,
+                ..BehaviourConfig::paper(0.0, 0.0, 0.0)
+            })
+        },
+    );
     format!(
-        "{}/{}/{}/{}/{seed}",
+        "{}/{behaviour}/{}/{}/{}/{seed}",
         scenario.reference_key(),
         scenario.duration_s,
         scenario.blank.to_text(),

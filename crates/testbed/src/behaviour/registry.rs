@@ -20,6 +20,11 @@ pub struct Declaration {
     pub doc: &'static str,
     /// The behaviour for a trial, starting forwards.
     pub build: fn(BehaviourConfig, ChaCha8Rng) -> Box<dyn Behaviour>,
+    /// What of `config` beyond the paper's thresholds, the largest command
+    /// and the hold (which the world's own key holds) this behaviour's
+    /// commands depend on, as text: two scenarios whose keys are equal walk
+    /// the same (see [`crate::experiment::world_key`]).
+    pub key: fn(&BehaviourConfig) -> String,
 }
 
 /// The behaviour a run uses unless told otherwise.
@@ -33,6 +38,7 @@ pub const BEHAVIOURS: [Declaration; 2] = [
               [-max, 0] backwards, each held 3 s, turning round when the beacon looks too big \
               or too small",
         build: |config, rng| Box::new(TrainingBehaviour::new(config, rng, Phase::Forwards)),
+        key: |_| "paper".into(),
     },
     Declaration {
         name: "design",
@@ -49,6 +55,12 @@ pub const BEHAVIOURS: [Declaration; 2] = [
                 rng,
                 Phase::Forwards,
             ))
+        },
+        key: |config| {
+            format!(
+                "design/{}",
+                config.action_degree + config.design_extra_degree
+            )
         },
     },
 ];

@@ -13,4 +13,4 @@ pub use leaderboard::{
     summary_table, write_leaderboard_csv,
 };
 pub use run::{Benchmark, shard_worlds};
-pub use suite::{SUITE_DIR, SuiteScenario, load_suite};
+pub use suite::{SUITE_DIR, SuiteScenario, load_suite, with_behaviours};

@@ -63,3 +63,29 @@ pub fn load_suite(
         })
         .collect()
 }
+
+/// `suite` with a behaviour axis: each scenario once per behaviour of
+/// `behaviours` (`behaviour.name` set on top of it), named
+/// `SCENARIO+BEHAVIOUR`; `suite` itself if `behaviours` is empty. An unknown
+/// behaviour is an error that lists the known ones.
+pub fn with_behaviours(
+    suite: Vec<SuiteScenario>,
+    behaviours: &[String],
+) -> Result<Vec<SuiteScenario>, SettingError> {
+    if behaviours.is_empty() {
+        return Ok(suite);
+    }
+    let mut out = Vec::new();
+    for s in &suite {
+        for b in behaviours {
+            let mut scenario = s.scenario.clone();
+            scenario.set(&format!("behaviour.name={b}"))?;
+            out.push(SuiteScenario {
+                name: format!("{}+{}", s.name, scenario.behaviour_name),
+                file: s.file.clone(),
+                scenario,
+            });
+        }
+    }
+    Ok(out)
+}
