@@ -94,9 +94,10 @@ def run_row(run):
     ratio = lambda key: ratios.get(key, {}).get("rms") if isinstance(ratios.get(key), dict) else None
     fmt = lambda v: f"{v:.2f}x" if isinstance(v, (int, float)) else "-"
     mean_time = first_stay(times, means, action_range, sensor_range)
+    seconds = lambda t: f"{t:.0f} s" if t is not None else "never"
     return (f"| {setting(config, 'learner.name')} | {setting(config, 'behaviour.name')} | {len(ok)} "
-            f"| {mean_time if mean_time is not None else 'never'} s "
-            f"| {statistics.median(reached) if len(reached) == len(own) else 'not all'} "
+            f"| {seconds(mean_time)} "
+            f"| {seconds(statistics.median(reached)) if len(reached) == len(own) else 'not all'} "
             f"({len(reached)} of {len(own)}) | {at(45)} | {at(90)} | {at(times[-1])} "
             f"| {fmt(ratio('action'))} / {fmt(ratio('sensor'))} |")
 
@@ -105,7 +106,7 @@ def main():
     runs = [pathlib.Path(p) for p in sys.argv[1:]]
     if not runs:
         sys.exit(__doc__)
-    print("| learner | behaviour | trials ok | paper level from (means) | median trial's time, s "
+    print("| learner | behaviour | trials ok | paper level from (means) | median trial's time "
           "(trials that reach it) | at 45 s: action, sensor (% of range), consistency | at 90 s "
           "| at the end | floor ratio, RMS: action / sensor |")
     print("|---|---|---|---|---|---|---|---|---|")
