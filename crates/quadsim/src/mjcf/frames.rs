@@ -150,6 +150,22 @@ pub(crate) fn numbers<const N: usize>(
     attrs: &BTreeMap<String, String>,
     key: &str,
 ) -> Result<Option<[f64; N]>, MjcfError> {
+    let Some(v) = number_list(el, attrs, key)? else {
+        return Ok(None);
+    };
+    let text = attrs.get(key).map_or("", String::as_str);
+    <[f64; N]>::try_from(v.as_slice())
+        .map(Some)
+        .map_err(|_| el.error(format!("`{key}` is \"{text}\": it takes {N} numbers")))
+}
+
+/// Numbers of attribute `key` of `attrs`, as many as it gives, if given;
+/// each must be finite.
+pub(crate) fn number_list(
+    el: &Element,
+    attrs: &BTreeMap<String, String>,
+    key: &str,
+) -> Result<Option<Vec<f64>>, MjcfError> {
     let Some(text) = attrs.get(key) else {
         return Ok(None);
     };
@@ -163,9 +179,7 @@ pub(crate) fn numbers<const N: usize>(
             "`{key}` is \"{text}\": every number must be finite"
         )));
     }
-    <[f64; N]>::try_from(v.as_slice())
-        .map(Some)
-        .map_err(|_| el.error(format!("`{key}` is \"{text}\": it takes {N} numbers")))
+    Ok(Some(v))
 }
 
 /// The frame an element's `pos` and orientation attributes give.

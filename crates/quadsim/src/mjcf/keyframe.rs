@@ -34,17 +34,9 @@ pub(crate) fn standing(
             )),
         ))
     };
-    let Some(text) = key.attrs.get("qpos") else {
+    let Some(qpos) = super::frames::number_list(key, &key.attrs, "qpos")? else {
         return left_out("it gives no qpos".into());
     };
-    let qpos: Vec<f64> = text
-        .split_whitespace()
-        .map(str::parse::<f64>)
-        .collect::<Result<_, _>>()
-        .map_err(|_| key.error(format!("`qpos` is \"{text}\", not numbers")))?;
-    if qpos.iter().any(|v| !v.is_finite()) {
-        return Err(key.error("`qpos`: every number must be finite"));
-    }
     if world_has_other_joints {
         return left_out(
             "the world has joints besides the robot's, so its qpos is not only the robot's".into(),
