@@ -93,6 +93,27 @@ pub fn i_optimal(degree: usize) -> Vec<(f64, f64)> {
     support.iter().map(|&(c, s)| (c, s / total)).collect()
 }
 
+/// One phase's draw from the I-optimal design for `degree` ([`i_optimal`],
+/// [`one_phase`]), found once per degree in a run and shared by its trials
+/// (it is the same every time, and finding it costs about a tenth of a
+/// second).
+pub fn phase_draw(degree: usize) -> Vec<(f64, f64)> {
+    use std::collections::BTreeMap;
+    use std::sync::{Mutex, OnceLock};
+    /// Each phase's draw (magnitude, probability) by degree.
+    type Found = Mutex<BTreeMap<usize, Vec<(f64, f64)>>>;
+    static FOUND: OnceLock<Found> = OnceLock::new();
+    let found = FOUND.get_or_init(|| Mutex::new(BTreeMap::new()));
+    if let Some(draw) = found.lock().ok().and_then(|m| m.get(&degree).cloned()) {
+        return draw;
+    }
+    let draw = one_phase(&i_optimal(degree));
+    if let Ok(mut m) = found.lock() {
+        m.insert(degree, draw.clone());
+    }
+    draw
+}
+
 /// One phase's draw from the symmetric `design`: magnitudes (fractions of
 /// the maximum) and their probabilities, a zero command counted half.
 pub fn one_phase(design: &[(f64, f64)]) -> Vec<(f64, f64)> {

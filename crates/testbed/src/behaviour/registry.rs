@@ -46,9 +46,9 @@ pub const BEHAVIOURS: [Declaration; 2] = [
               least average prediction variance over the paper's 31 commands) for a polynomial \
               behaviour.design_extra_degree degrees above the action model's, not uniformly",
         build: |config, rng| {
-            let draw = Draw::Design(super::design::one_phase(&super::design::i_optimal(
+            let draw = Draw::Design(super::design::phase_draw(
                 config.action_degree + config.design_extra_degree,
-            )));
+            ));
             Box::new(TrainingBehaviour::drawing(
                 config,
                 draw,
