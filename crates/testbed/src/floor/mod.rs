@@ -23,13 +23,16 @@
 //! the floor adds the model class's bias, the best polynomial's error, in
 //! quadrature: `floor^2 = best^2 + variance`.
 
-use nalgebra::{DMatrix, DVector};
-use nalgebra_sparse::factorization::CscCholesky;
-use nalgebra_sparse::{CooMatrix, CscMatrix};
+use nalgebra::DMatrix;
 use scasm::Polynomial;
 
 use crate::metrics;
 use crate::reference::Reference;
+
+mod arrow;
+mod estimator;
+use arrow::Normal;
+pub use estimator::{joint_maximum_likelihood, maximum_likelihood};
 
 /// How long after a change of command the gait counts as changing over, s:
 /// such frames have a process noise of their own.
@@ -105,28 +108,6 @@ impl Floor {
     }
 }
 
-/// The maximum-likelihood models of the floor's own model, by Gauss-Newton
-/// from the truth with the noises given: the efficient estimator the floor
-/// is checked against by Monte Carlo. `(action, sensor)`, raw polynomials.
-pub fn maximum_likelihood(
-    rows: &[Sample],
-    reference: &Reference,
-    degrees: (usize, usize),
-    noise: Noise,
-) -> Option<(Polynomial, Polynomial)> {
-    let problem = Problem::new(rows, reference, degrees, Some(noise))?;
-    let mut point = problem.truth();
-    for _ in 0..20 {
-        let (f, gradient) = problem.normal_equations(&point);
-        let step = CscCholesky::factor(&f).ok()?.solve(&(-gradient));
-        point.add(&step);
-        if step.amax() < 1e-10 * (1.0 + point.path.iter().fold(0.0, |m, x| f64::max(m, x.abs()))) {
-            break;
-        }
-    }
-    Some((problem.action(&point)?, problem.sensor(&point)?))
-}
-
 /// The floor's estimation problem over one trial.
 struct Problem<'a> {
     rows: &'a [Sample],
@@ -160,12 +141,11 @@ struct Point {
 }
 
 impl Point {
-    fn add(&mut self, step: &DMatrix<f64>) {
-        let free = self.path.len() - 1;
-        for (x, d) in self.path[1..].iter_mut().zip(step.iter()) {
+    fn add(&mut self, path: &[f64], model: &[f64]) {
+        for (x, d) in self.path[1..].iter_mut().zip(path) {
             *x += d;
         }
-        for (m, d) in self.model.iter_mut().zip(step.iter().skip(free)) {
+        for (m, d) in self.model.iter_mut().zip(model) {
             *m += d;
         }
     }
@@ -433,67 +413,17 @@ impl<'a> Problem<'a> {
     }
 
     /// The Gauss-Newton normal equations at `point`: the Fisher information
-    /// `J^T W J` (sparse, symmetric) and the gradient `J^T W r`.
-    fn normal_equations(&self, point: &Point) -> (CscMatrix<f64>, DVector<f64>) {
-        let free = self.rows.len() - 1;
-        let q = self.model_params();
-        let (mut diag, mut off) = (vec![0.0; free], vec![0.0; free.saturating_sub(1)]);
-        let (mut border, mut model) = (vec![0.0; free * q], vec![0.0; q * q]);
-        let mut gradient = DVector::zeros(free + q);
-        self.visit_rows(point, |w, r, entries| {
-            for &(a, va) in entries {
-                gradient[a] += w * va * r;
-                for &(b, vb) in entries {
-                    let v = w * va * vb;
-                    match (a < free, b < free) {
-                        (true, true) if a == b => diag[a] += v,
-                        (true, true) if b + 1 == a => off[b] += v,
-                        (true, true) => {}
-                        (true, false) => border[a * q + b - free] += v,
-                        (false, true) => {}
-                        (false, false) => model[(a - free) * q + b - free] += v,
-                    }
-                }
-            }
-        });
-        let mut coo = CooMatrix::new(free + q, free + q);
-        for (i, &d) in diag.iter().enumerate() {
-            coo.push(i, i, d);
-        }
-        for (i, &o) in off.iter().enumerate() {
-            coo.push(i + 1, i, o);
-            coo.push(i, i + 1, o);
-        }
-        for i in 0..free {
-            for k in 0..q {
-                let v = border[i * q + k];
-                if v != 0.0 {
-                    coo.push(i, free + k, v);
-                    coo.push(free + k, i, v);
-                }
-            }
-        }
-        for a in 0..q {
-            for b in 0..q {
-                coo.push(free + a, free + b, model[a * q + b]);
-            }
-        }
-        (CscMatrix::from(&coo), gradient)
+    /// `J' W J`, the gradient `J' W r`, and the sum of squares' parts.
+    fn normal_equations(&self, point: &Point) -> Normal {
+        let mut normal = Normal::zeros(self.rows.len() - 1, self.model_params());
+        self.visit_rows(point, |w, r, entries| normal.add(w, r, entries));
+        normal
     }
 
     /// The covariance bound of the model corrections: the model block of the
-    /// inverse Fisher information at the truth.
-    fn model_covariance(&self) -> Option<DMatrix<f64>> {
-        let free = self.rows.len() - 1;
-        let q = self.model_params();
-        let (f, _) = self.normal_equations(&self.truth());
-        let cholesky = CscCholesky::factor(&f).ok()?;
-        let mut unit = DMatrix::zeros(free + q, q);
-        for k in 0..q {
-            unit[(free + k, k)] = 1.0;
-        }
-        let columns = cholesky.solve(&unit);
-        let covariance = columns.rows(free, q).into_owned();
+    /// inverse Fisher information at `point` (the truth, for the floor).
+    fn model_covariance(&self, point: &Point) -> Option<DMatrix<f64>> {
+        let covariance = self.normal_equations(point).eliminate()?.model_covariance();
         covariance
             .iter()
             .all(|v| v.is_finite())
@@ -501,7 +431,7 @@ impl<'a> Problem<'a> {
     }
 
     fn floor(&self) -> Option<Floor> {
-        let covariance = self.model_covariance()?;
+        let covariance = self.model_covariance(&self.truth())?;
         let da = self.action_degree;
         // Action metric: e = k A(c) - v after the best k; linearised at A*,
         // de = P dA with P the projection off A*'s values.
@@ -604,7 +534,7 @@ impl Table {
 /// of command. The walk off from standing, at the first frame's start, is a
 /// change like any later one (counted as steady, it made the steady noise
 /// about twice what a steady frame has).
-fn changing_frames(rows: &[Sample]) -> Vec<bool> {
+pub fn changing_frames(rows: &[Sample]) -> Vec<bool> {
     let mut changed_at = match rows {
         [first, second, ..] => first.t_s - (second.t_s - first.t_s),
         _ => f64::NEG_INFINITY,
