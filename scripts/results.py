@@ -108,6 +108,13 @@ def by_floor(summary, model):
     return f"{m[key[0]] / m[key[1]]:.2f}x (by means)"
 
 
+def by_likelihood(summary, model):
+    """The error over the likelihood's floor by RMS over the trials; "-" where a
+    kept summary was written before the likelihood's floor was."""
+    r = summary.get("floor_ratios", {}).get(f"{model}_likelihood")
+    return f"{r['rms']:.2f}x" if r and r.get("n") else "-"
+
+
 def f1(x):
     return "-" if x is None else f"{x:.1f}"
 
@@ -129,11 +136,11 @@ def page():
             f"| `{name}` | {f1(m['action_rmse_mm_s'])} +- {f1(sd['action_rmse_mm_s'])} | "
             f"{f1(md['action_rmse_mm_s'])} [{f1(p10['action_rmse_mm_s'])}, {f1(p90['action_rmse_mm_s'])}] | "
             f"{m['action_rmse_mm_s'] / m['action_best_rmse_mm_s']:.2f}x; "
-            f"{by_floor(s, 'action')} | "
+            f"{by_floor(s, 'action')}; {by_likelihood(s, 'action')} | "
             f"{f1(m['sensor_rmse_mm'])} +- {f1(sd['sensor_rmse_mm'])} | "
             f"{f1(md['sensor_rmse_mm'])} [{f1(p10['sensor_rmse_mm'])}, {f1(p90['sensor_rmse_mm'])}] | "
             f"{m['sensor_rmse_mm'] / m['sensor_best_rmse_mm']:.2f}x; "
-            f"{by_floor(s, 'sensor')} | "
+            f"{by_floor(s, 'sensor')}; {by_likelihood(s, 'sensor')} | "
             f"{m['consistency']:.3f} | {worse} of {ok} ({by_action}, {by_sensor}) |")
         stamps.append((name, s["made_by"]))
         best = m
@@ -144,18 +151,23 @@ def page():
            "or learner has been chosen (they are chosen on development seeds, 100-999). `scasm` runs "
            "live (`train`); every other learner is replayed the same 50 recorded worlds. \"/ best\" is "
            "the mean error over the mean best polynomial of the learner's degree through the measured "
-           "model; \"/ floor\" the error over the information floor by root mean square over the "
-           "trials, with the median and 90th percentile of the per-trial ratios in brackets (the "
-           "floor bounds a mean square; see [the information floor](../design/information-floor.md)).", "",
-           "| learner | action mm/s: mean +- std | median [p10, p90] | / best; / floor | "
-           "sensor mm: mean +- std | median [p10, p90] | / best; / floor | consistency | "
+           "model; \"/ floor\" the error over the information floor (the metric's floor) by root "
+           "mean square over the trials, with the median and 90th percentile of the per-trial ratios "
+           "in brackets (the floor bounds a mean square), and \"/ likelihood\" over the likelihood's "
+           "floor, where maximum likelihood of the floor's model lands, by RMS (see "
+           "[the information floor](../design/information-floor.md)).", "",
+           "| learner | action mm/s: mean +- std | median [p10, p90] | / best; / floor; / likelihood | "
+           "sensor mm: mean +- std | median [p10, p90] | / best; / floor; / likelihood | consistency | "
            "worse than start (action, sensor) |",
            "|---|---|---|---|---|---|---|---|---|", *rows, ""]
     if rows:
         out += [f"The best quartic through the measured action model is {best['action_best_rmse_mm_s']:.1f} mm/s, "
                 f"the best cubic through the sensor model {best['sensor_best_rmse_mm']:.1f} mm, A0 "
                 f"{best['action_a0_rmse_mm_s']:.1f} mm/s; the information floor's mean is "
-                f"{best['action_crb_rmse_mm_s']:.1f} mm/s and {best['sensor_crb_rmse_mm']:.1f} mm. "
+                f"{best['action_crb_rmse_mm_s']:.1f} mm/s and {best['sensor_crb_rmse_mm']:.1f} mm"
+                + (f", the likelihood's floor's {best['action_likelihood_floor_mm_s']:.1f} mm/s and "
+                   f"{best['sensor_likelihood_floor_mm']:.1f} mm" if "action_likelihood_floor_mm_s" in best else "")
+                + ". "
                 "The benchmark's table below is its leaderboard as that run wrote it.", ""]
     out += ["Made by (each table's run):", ""]
     for name, st in stamps:

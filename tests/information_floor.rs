@@ -195,6 +195,8 @@ fn the_efficient_estimators_spread_is_the_floor_and_no_learner_beats_it() {
         steady_mm: 0.01,
         changing_mm: 0.01,
         bob_mm: 0.0,
+        lag_s: 0.0,
+        steady_core_mm: 0.01,
     };
     let bound =
         Floor::with_noise(&world.draw(&path, &mut rng), reference, degrees, noise).expect("floor");
@@ -269,18 +271,21 @@ fn the_efficient_estimators_spread_is_the_floor_and_no_learner_beats_it() {
     assert!(sensor_sq.sqrt() >= 0.9 * bound.sensor_rmse_mm);
 }
 
-/// The noises of real trials, with no bob: a typical one (the ERS-7, seed
-/// 100: 0.94 px, 0.72 mm a steady frame, 8.5 mm a frame changing over) and
-/// the noisiest process (4.7 and 10 mm, the top of the ranges real trials
-/// show: 0.5-4.7 mm steady, 6-10 mm changing over).
+/// The noises of real trials, with no bob: a typical one (the ERS-7: 0.94
+/// px, 0.72 mm a steady frame, 3 mm a frame changing over beyond the gait's
+/// lag of 0.17 s) and the noisiest process (4.7 and 10 mm, the top of the
+/// ranges real trials show: 0.5-4.7 mm steady, 6-10 mm changing over with
+/// no lag modelled).
 const REAL: [(&str, Noise); 2] = [
     (
         "typical",
         Noise {
             reading_px: 0.94,
             steady_mm: 0.72,
-            changing_mm: 8.5,
+            changing_mm: 3.0,
             bob_mm: 0.0,
+            lag_s: 0.17,
+            steady_core_mm: 0.72,
         },
     ),
     (
@@ -290,14 +295,16 @@ const REAL: [(&str, Noise); 2] = [
             steady_mm: 4.7,
             changing_mm: 10.0,
             bob_mm: 0.0,
+            lag_s: 0.2,
+            steady_core_mm: 4.7,
         },
     ),
 ];
 
 impl World {
-    /// A fresh draw of the path, with `noise`'s process noise (the frames
-    /// within 0.5 s of a change of command at its changing level), and of
-    /// its readings.
+    /// A fresh draw of the path, walked through `noise`'s lag with its
+    /// process noise (the frames within 0.5 s of a change of command at its
+    /// changing level), and of its readings.
     fn noisy_draw(
         &self,
         frames: &[Sample],
@@ -306,6 +313,8 @@ impl World {
     ) -> Vec<Sample> {
         let unit = Normal::new(0.0, 1.0).expect("normal");
         let changing = floor::changing_frames(frames);
+        let steady: Vec<f64> = frames.iter().map(|r| self.action.eval(r.command)).collect();
+        let means = floor::lag::mean_velocities(frames, noise.lag_s, &steady);
         let mut x = frames[0].x_true_mm;
         let mut t = frames[0].t_s;
         frames
@@ -319,7 +328,7 @@ impl World {
                     } else {
                         noise.steady_mm
                     };
-                    x -= self.action.eval(r.command) * (r.t_s - t) + sd * unit.sample(rng);
+                    x -= means[j] * (r.t_s - t) + sd * unit.sample(rng);
                 }
                 t = r.t_s;
                 Sample {
@@ -360,8 +369,9 @@ fn rms_over_draws(world: &World, draws: &[Vec<Sample>], noise: Noise) -> [[f64; 
 }
 
 /// The floor's own world at the noise levels of real trials: the path drawn
-/// afresh with its process noise, each draw's floor computed with the noises
-/// it was drawn with. Maximum likelihood with the path integrated out attains
+/// afresh through the gait's lag with its process noise, each draw's floor
+/// computed with the noises it was drawn with (and found from the truth as
+/// a trial's are). Maximum likelihood with the path integrated out attains
 /// the floor by RMS over the draws; jointly over path and models it does not
 /// (biased by the frames' locations as nuisance parameters), most where the
 /// process noise is largest.
@@ -371,9 +381,21 @@ fn at_real_noise_levels_the_path_integrated_out_attains_the_floor() {
     let frames = world.path();
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(57);
     for (name, noise) in REAL {
-        let draws: Vec<Vec<Sample>> = (0..60)
+        let draws: Vec<Vec<Sample>> = (0..150)
             .map(|_| world.noisy_draw(&frames, noise, &mut rng))
             .collect();
+        // The floor finds the lag and the noises from the truth.
+        let found = Floor::of(&draws[0], &world.reference, (4, 3))
+            .expect("floor")
+            .noise;
+        assert!(
+            (found.lag_s / noise.lag_s - 1.0).abs() < 0.1,
+            "{name}: {found:?}"
+        );
+        assert!(
+            (found.steady_mm / noise.steady_mm - 1.0).abs() < 0.2,
+            "{name}: {found:?}"
+        );
         let [action, sensor] = rms_over_draws(&world, &draws, noise);
         let ratio = |m: [f64; 3], i: usize| m[i] / m[0];
         eprintln!(

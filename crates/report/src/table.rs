@@ -162,14 +162,31 @@ pub fn headline(aggregate: &Aggregate, models: &MeasuredModels) -> String {
     ];
     let mut out = text(&header, &rows);
     let (a, s) = (&aggregate.floor.action, &aggregate.floor.sensor);
+    let (la, ls) = (
+        &aggregate.floor.action_likelihood,
+        &aggregate.floor.sensor_likelihood,
+    );
     let floor = if a.n == 0 && s.n == 0 {
         "no trial has an information floor".to_string()
     } else {
         format!(
             "the information floor, the least error the data allow, by RMS over the trials: \
              action {:.1} mm/s (the error {:.2}x it by RMS; per trial median {:.2}x, p90 \
-             {:.2}x), sensor {:.1} mm ({:.2}x; {:.2}x, {:.2}x)",
-            a.floor_rms, a.rms, a.median, a.p90, s.floor_rms, s.rms, s.median, s.p90
+             {:.2}x), sensor {:.1} mm ({:.2}x; {:.2}x, {:.2}x); the likelihood's floor, where \
+             maximum likelihood of the floor's model lands: action {:.1} mm/s ({:.2}x), sensor \
+             {:.1} mm ({:.2}x)",
+            a.floor_rms,
+            a.rms,
+            a.median,
+            a.p90,
+            s.floor_rms,
+            s.rms,
+            s.median,
+            s.p90,
+            la.floor_rms,
+            la.rms,
+            ls.floor_rms,
+            ls.rms
         )
     };
     out += &wrap(

@@ -193,8 +193,9 @@ pub fn cells(entries: &[Entry], learners: &[String], scenarios: &[String]) -> Ve
 
 /// The summary table: per scenario and learner, each error's mean +- std
 /// and median [p10, p90], their ratios to the best polynomials (mean;
-/// median), the information floor by root mean square over the trials (the
-/// error over it by RMS, and the per-trial ratios' median and p90), the
+/// median), the information floors (the metric's and the likelihood's) by
+/// root mean square over the trials (the error over each by RMS, and the
+/// per-trial ratios' median and p90), the
 /// consistency, the trials worse than their start (in the
 /// means), and the trials ok.
 pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
@@ -205,10 +206,12 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
         "action median [p10, p90]",
         "action / best (mean; median)",
         "action floor, RMS (/ floor; median, p90)",
+        "action likelihood's floor, RMS (/ floor; median, p90)",
         "sensor mm",
         "sensor median [p10, p90]",
         "sensor / best (mean; median)",
         "sensor floor, RMS (/ floor; median, p90)",
+        "sensor likelihood's floor, RMS (/ floor; median, p90)",
         "consistency",
         "worse than start (action, sensor)",
         "trials ok",
@@ -239,6 +242,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.action_ratio_of(&a.median)
                 ),
                 a.floor.action.cell(),
+                a.floor.action_likelihood.cell(),
                 format!("{:.1} +- {:.1}", m.sensor_rmse_mm, s.sensor_rmse_mm),
                 tail(|f| f.sensor_rmse_mm),
                 format!(
@@ -247,6 +251,7 @@ pub fn summary_table(cells: &[Cell]) -> (Vec<String>, Vec<Vec<String>>) {
                     c.sensor_ratio_of(&a.median)
                 ),
                 a.floor.sensor.cell(),
+                a.floor.sensor_likelihood.cell(),
                 format!("{:.3} +- {:.3}", m.consistency, s.consistency),
                 {
                     let (action, sensor) = a.worse_by_model();

@@ -41,18 +41,21 @@ impl Normal {
     }
 
     /// Adds a residual `r` of precision `w` whose derivatives are `entries`
-    /// (free index, value; path indices below `free`, then the models').
+    /// (free index, value; path indices below `free`, then the models');
+    /// entries of model columns beyond this one's are left out.
     pub fn add(&mut self, w: f64, r: f64, entries: &[(usize, f64)]) {
         let free = self.diag.len();
+        let end = free + self.model.nrows();
         self.weighted_squares += w * r * r;
         self.log_variances -= w.ln();
-        for &(a, va) in entries {
+        let entries = entries.iter().filter(|e| e.0 < end);
+        for &(a, va) in entries.clone() {
             if a < free {
                 self.gradient_path[a] += w * va * r;
             } else {
                 self.gradient_model[a - free] += w * va * r;
             }
-            for &(b, vb) in entries {
+            for &(b, vb) in entries.clone() {
                 let v = w * va * vb;
                 match (a < free, b < free) {
                     (true, true) if a == b => self.diag[a] += v,

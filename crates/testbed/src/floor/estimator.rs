@@ -45,52 +45,93 @@ pub fn maximum_likelihood(
     degrees: (usize, usize),
     noise: Noise,
 ) -> Option<(Polynomial, Polynomial)> {
-    let problem = Problem::new(rows, reference, degrees, Some(noise))?;
-    let mut point = problem.truth();
-    let mut value = problem.profile(&mut point)?;
-    for _ in 0..MAX_NEWTON {
-        let covariance = problem.model_covariance(&point)?;
-        // Forward differences, less the bias of their curvature (half the
-        // step times the Hessian's diagonal, here the information's).
-        let information = covariance.clone().try_inverse()?;
-        let gradient = DVector::from_iterator(
-            point.model.len(),
-            (0..point.model.len()).map(|k| {
-                let h = GRADIENT_STEP_SD * covariance[(k, k)].sqrt();
-                let mut moved = point.clone();
-                moved.model[k] += h;
-                problem.profile(&mut moved).map_or(f64::NAN, |up| {
-                    (up - value) / h - 0.5 * h * information[(k, k)]
-                })
-            }),
-        );
-        let step = -(&covariance * &gradient);
-        // The Newton decrement: how far below `value` the quadratic model
-        // says the minimum is.
-        let decrement = -0.5 * gradient.dot(&step);
-        if !decrement.is_finite() {
-            return None;
-        }
-        if decrement < 1e-9 {
-            break;
-        }
-        let mut scale = 1.0;
-        loop {
-            let mut trial = point.clone();
-            for (m, d) in trial.model.iter_mut().zip(step.iter()) {
-                *m += scale * d;
-            }
-            match problem.profile(&mut trial) {
-                Some(v) if v <= value => {
-                    (point, value) = (trial, v);
-                    break;
-                }
-                _ if scale > 1e-3 => scale *= 0.5,
-                _ => return Some((problem.action(&point)?, problem.sensor(&point)?)),
+    Problem::new(rows, reference, degrees, Some(noise))?.maximum_likelihood()
+}
+
+impl Problem<'_> {
+    /// The models the floor's likelihood fits when nothing is noisy: the
+    /// true path held and the readings noise-free, the models at the most
+    /// likely given them (Gauss-Newton in the models alone, from the best
+    /// polynomials). The likelihood weighs each frame alike and fits
+    /// readings in pixels where the metrics weigh the test commands and
+    /// distances alike in mm/s and mm, so these are not the best polynomials.
+    pub(super) fn likelihood_limit(&self) -> Option<(Polynomial, Polynomial)> {
+        let clean: Vec<Sample> = self
+            .rows
+            .iter()
+            .map(|r| Sample {
+                obs_px: r.obs_px.map(|_| self.true_obs(r.x_true_mm)),
+                ..*r
+            })
+            .collect();
+        let degrees = (self.action_degree, self.sensor_degree);
+        let problem = Problem::new(&clean, self.reference, degrees, Some(self.noise))?;
+        let mut point = problem.truth();
+        for _ in 0..20 {
+            let normal = problem.normal_equations(&point);
+            let step = normal
+                .model
+                .clone()
+                .cholesky()?
+                .solve(&(-&normal.gradient_model));
+            point.add(&[], step.as_slice());
+            let sd = normal.model.diagonal().map(|d| 1.0 / d.sqrt());
+            if step.iter().zip(sd.iter()).all(|(s, d)| s.abs() < 1e-9 * d) {
+                break;
             }
         }
+        Some((problem.action(&point)?, problem.sensor(&point)?))
     }
-    Some((problem.action(&point)?, problem.sensor(&point)?))
+
+    /// [`maximum_likelihood`] of this problem.
+    fn maximum_likelihood(&self) -> Option<(Polynomial, Polynomial)> {
+        let problem = self;
+        let mut point = problem.truth();
+        let mut value = problem.profile(&mut point)?;
+        for _ in 0..MAX_NEWTON {
+            let covariance = problem.model_covariance(&point)?;
+            // Forward differences, less the bias of their curvature (half the
+            // step times the Hessian's diagonal, here the information's).
+            let information = covariance.clone().try_inverse()?;
+            let gradient = DVector::from_iterator(
+                point.model.len(),
+                (0..point.model.len()).map(|k| {
+                    let h = GRADIENT_STEP_SD * covariance[(k, k)].sqrt();
+                    let mut moved = point.clone();
+                    moved.model[k] += h;
+                    problem.profile(&mut moved).map_or(f64::NAN, |up| {
+                        (up - value) / h - 0.5 * h * information[(k, k)]
+                    })
+                }),
+            );
+            let step = -(&covariance * &gradient);
+            // The Newton decrement: how far below `value` the quadratic model
+            // says the minimum is.
+            let decrement = -0.5 * gradient.dot(&step);
+            if !decrement.is_finite() {
+                return None;
+            }
+            if decrement < 1e-9 {
+                break;
+            }
+            let mut scale = 1.0;
+            loop {
+                let mut trial = point.clone();
+                for (m, d) in trial.model.iter_mut().zip(step.iter()) {
+                    *m += scale * d;
+                }
+                match problem.profile(&mut trial) {
+                    Some(v) if v <= value => {
+                        (point, value) = (trial, v);
+                        break;
+                    }
+                    _ if scale > 1e-3 => scale *= 0.5,
+                    _ => return Some((problem.action(&point)?, problem.sensor(&point)?)),
+                }
+            }
+        }
+        Some((problem.action(&point)?, problem.sensor(&point)?))
+    }
 }
 
 /// The models `(action, sensor)` of the joint maximum of the likelihood over
@@ -128,7 +169,7 @@ impl Problem<'_> {
     fn profile(&self, point: &mut Point) -> Option<f64> {
         let scale = 1.0 + point.path.iter().fold(0.0, |m, x| f64::max(m, x.abs()));
         for _ in 0..50 {
-            let normal = self.normal_equations(point);
+            let normal = self.normal_equations_in(point, 0);
             let factor = normal.path_factor()?;
             let step = factor.solve(normal.gradient_path.iter().map(|g| -g).collect());
             point.add(&step, &[]);

@@ -3,25 +3,33 @@
 //! of the given model degrees could have done with these commands, these
 //! reading times and this much noise, and so how much of a learner's gap to
 //! the best polynomials is the recording's and how much is the method's.
-//! The derivation and its assumptions are in `book/src/design/information-floor.md`.
+//! The derivation and its assumptions, each with its measured effect, are in
+//! `book/src/design/information-floor.md`.
 //!
-//! The model is the one every learner here assumes: over frame `j` the
-//! location moves by `A(C_j) dt_j` plus white process noise, and each reading
-//! is `S^-1(x) + ` white reading noise. The unknowns are the location at every
-//! frame's end, A's coefficients and S's (A polynomial of the learner's action
-//! degree in the command, S of its sensor degree in the reading). The gauge
-//! the metrics are blind to is fixed by holding the first location and A's
-//! linear coefficient. The noises are measured from the trial's ground truth
-//! (the floor is the testbed's judgement, like the metrics): the readings'
-//! spread about the noise-free reading at the true distance, and the true
-//! displacement's about the steady response's, apart for frames within
-//! [`CHANGING_OVER_S`] of a change of command. The Fisher information at the
-//! truth (the true path, the best polynomials) is a tridiagonal path block
-//! bordered by the model columns, factored sparsely; its inverse's model
-//! block, pushed through each metric linearised at the truth, is the variance
-//! no unbiased learner can go below. The true models are not polynomials, so
-//! the floor adds the model class's bias, the best polynomial's error, in
-//! quadrature: `floor^2 = best^2 + variance`.
+//! The model is the one every learner here assumes, with the gait's lag:
+//! over frame `j` the location moves by the frame's mean velocity when the
+//! body's velocity follows `A(C)` through a first-order lag (`floor/lag.rs`), times
+//! `dt_j`, plus white process noise; each reading is `S^-1(x) + ` white
+//! reading noise. The unknowns are the location at every frame's end, A's
+//! coefficients and S's (A polynomial of the learner's action degree in the
+//! command, S of its sensor degree in the reading). The gauge the metrics
+//! are blind to is fixed by holding the first location and A's linear
+//! coefficient. The noises and the lag are measured from the trial's ground
+//! truth (the floor is the testbed's judgement, like the metrics): the
+//! readings' spread about the noise-free reading at the true distance, the
+//! lag's time constant that best explains the path after each change of
+//! command, and the true displacement's spread about the lagged steady
+//! response's, apart for frames within [`CHANGING_OVER_S`] of a change. The
+//! Fisher information at the truth (the true path, the best polynomials) is
+//! a tridiagonal path block bordered by the model columns (`floor/arrow.rs`); its
+//! inverse's model block, pushed through each metric linearised at the
+//! truth, is the variance no unbiased learner can go below. The true models
+//! are not polynomials, so the floor adds the model class's bias in
+//! quadrature: `floor^2 = best^2 + variance` (the metric's floor, with the
+//! best polynomial in the metric's loss), and `limit^2 + variance` (the
+//! likelihood's floor, with the models the likelihood fits when nothing is
+//! noisy). [`maximum_likelihood`] is the efficient estimator the floor is checked
+//! against.
 
 use nalgebra::DMatrix;
 use scasm::Polynomial;
@@ -31,6 +39,7 @@ use crate::reference::Reference;
 
 mod arrow;
 mod estimator;
+pub mod lag;
 use arrow::Normal;
 pub use estimator::{joint_maximum_likelihood, maximum_likelihood};
 
@@ -70,15 +79,41 @@ pub struct Noise {
     /// RMS of the location's bob about its smooth walk, mm: white jitter
     /// that shakes each reading by `g'(x)` times as much.
     pub bob_mm: f64,
+    /// The time constant of the gait's first-order lag after a change of
+    /// command, s (0: none); the departures above are what it leaves.
+    pub lag_s: f64,
+    /// The steady process noise's Gaussian core, mm per frame: the scale of
+    /// the summed departures by their median absolute value (1.4826 MAD),
+    /// which the occasional stall, a heavy tail, does not move as it moves
+    /// the RMS (`steady_mm`).
+    pub steady_core_mm: f64,
 }
 
 /// A trial's information floor on the paper's two metrics.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Floor {
-    /// The action metric's floor: `sqrt(best^2 + variance)`, mm/s.
+    /// The action metric's floor, the *metric's floor*: `sqrt(best^2 +
+    /// variance)`, with `best` the best polynomial in the metric's own loss.
+    /// No learner of the degrees does better on average, mm/s.
     pub action_rmse_mm_s: f64,
     /// The sensor metric's floor, mm.
     pub sensor_rmse_mm: f64,
+    /// The action metric's *likelihood's floor*: `sqrt(limit^2 +
+    /// variance)`, with `limit` the error of the maximum-likelihood models
+    /// of the floor's model on this trial's frames with noise-free readings,
+    /// where the efficient estimator of that model converges, mm/s. NaN if
+    /// that fit fails.
+    pub action_likelihood_mm_s: f64,
+    /// The sensor metric's likelihood's floor, mm.
+    pub sensor_likelihood_mm: f64,
+    /// The action metric's floor with the steady process noise at its
+    /// Gaussian core ([`Noise::steady_core_mm`]) instead of its RMS: what the
+    /// floor would be if the noise's heavy tails were known, roughly; the gap
+    /// to [`Floor::action_rmse_mm_s`] is what assuming Gaussian noise costs
+    /// the bound, mm/s.
+    pub action_core_mm_s: f64,
+    /// The same of the sensor metric, mm.
+    pub sensor_core_mm: f64,
     /// The action metric's variance part alone (its square root), mm/s.
     pub action_sd_mm_s: f64,
     /// The sensor metric's variance part alone, mm.
@@ -93,8 +128,7 @@ impl Floor {
     /// degrees; `None` if the world changed during the trial, or there is too
     /// little to compute it from.
     pub fn of(rows: &[Sample], reference: &Reference, degrees: (usize, usize)) -> Option<Self> {
-        let problem = Problem::new(rows, reference, degrees, None)?;
-        problem.floor()
+        Problem::new(rows, reference, degrees, None)?.floor()
     }
 
     /// The same with the noises given instead of measured.
@@ -109,6 +143,7 @@ impl Floor {
 }
 
 /// The floor's estimation problem over one trial.
+#[derive(Clone)]
 struct Problem<'a> {
     rows: &'a [Sample],
     reference: &'a Reference,
@@ -120,6 +155,8 @@ struct Problem<'a> {
     sensor_degree: usize,
     a_star: Polynomial,
     s_star: Polynomial,
+    /// `S*'`.
+    s_star_slope: Polynomial,
     command_scale: f64,
     obs_centre: f64,
     obs_half: f64,
@@ -129,6 +166,10 @@ struct Problem<'a> {
     /// Per row: whether its frame is within [`CHANGING_OVER_S`] of a change.
     changing: Vec<bool>,
     noise: Noise,
+    /// Per row: the mean velocity over its frame of A* through the lag.
+    star_means: Vec<f64>,
+    /// Per free A coefficient `k`, per row: the same of its basis function.
+    basis_means: Vec<Vec<f64>>,
 }
 
 /// A point of the problem: every location (the first held), and the
@@ -191,6 +232,7 @@ impl<'a> Problem<'a> {
             action_degree,
             sensor_degree,
             a_star,
+            s_star_slope: s_star.derivative(),
             s_star,
             command_scale,
             obs_centre: 0.5 * (lo + hi),
@@ -202,7 +244,11 @@ impl<'a> Problem<'a> {
                 steady_mm: 1.0,
                 changing_mm: 1.0,
                 bob_mm: 0.0,
+                lag_s: 0.0,
+                steady_core_mm: 1.0,
             },
+            star_means: Vec::new(),
+            basis_means: Vec::new(),
         };
         // Which way the location moves under a positive velocity, from the
         // truth itself.
@@ -216,8 +262,21 @@ impl<'a> Problem<'a> {
         problem.direction = if moved < 0.0 { -1.0 } else { 1.0 };
         problem.noise = match noise {
             Some(n) => n,
-            None => problem.measured_noise()?,
+            None => problem.measured_noise(problem.measured_lag())?,
         };
+        let lag = problem.noise.lag_s;
+        let commands: Vec<f64> = rows.iter().map(|r| r.command).collect();
+        let star: Vec<f64> = commands.iter().map(|&c| problem.a_star.eval(c)).collect();
+        problem.star_means = lag::mean_velocities(rows, lag, &star);
+        problem.basis_means = (0..action_degree)
+            .map(|k| {
+                let u: Vec<f64> = commands
+                    .iter()
+                    .map(|&c| (c / command_scale).powi(Self::action_power(k)))
+                    .collect();
+                lag::mean_velocities(rows, lag, &u)
+            })
+            .collect();
         Some(problem)
     }
 
@@ -243,20 +302,10 @@ impl<'a> Problem<'a> {
     /// [`CHANGING_OVER_S`] of frames (the spread of the summed departures,
     /// per frame), where the bob has averaged out, and the bob itself (the
     /// one-frame excess) is counted with the readings it shakes.
-    fn measured_noise(&self) -> Option<Noise> {
+    fn measured_noise(&self, lag_s: f64) -> Option<Noise> {
         let n = self.rows.len();
-        let departure: Vec<f64> = (0..n)
-            .map(|j| {
-                if j == 0 {
-                    return 0.0;
-                }
-                self.rows[j].x_true_mm
-                    - self.rows[j - 1].x_true_mm
-                    - self.direction * self.dt(j) * self.true_velocity(self.rows[j].command)
-            })
-            .collect();
-        let frame_s = (self.rows[n - 1].t_s - self.rows[0].t_s) / (n - 1) as f64;
-        let span = ((CHANGING_OVER_S / frame_s).round() as usize).max(1);
+        let departure = self.departures(lag_s);
+        let span = self.span();
         let (mut steady, mut changing, mut single) = (Vec::new(), Vec::new(), Vec::new());
         for j in 1..n.saturating_sub(span) {
             let window = j..j + span;
@@ -280,6 +329,9 @@ impl<'a> Problem<'a> {
         let per_frame =
             |v: &[f64]| mean_square(v).map(|m| (m / span as f64).sqrt().max(MIN_PROCESS_MM));
         let steady_mm = per_frame(&steady)?;
+        let mut absolute: Vec<f64> = steady.iter().map(|x| x.abs()).collect();
+        absolute.sort_by(f64::total_cmp);
+        let core = 1.4826 * absolute[absolute.len() / 2] / (span as f64).sqrt();
         let bob = ((mean_square(&single)? - steady_mm * steady_mm) / 2.0)
             .max(0.0)
             .sqrt();
@@ -293,7 +345,50 @@ impl<'a> Problem<'a> {
             steady_mm,
             changing_mm: per_frame(&changing).unwrap_or(steady_mm),
             bob_mm: bob,
+            lag_s,
+            steady_core_mm: core.clamp(MIN_PROCESS_MM, steady_mm),
         })
+    }
+
+    /// Frames in [`CHANGING_OVER_S`].
+    fn span(&self) -> usize {
+        let n = self.rows.len();
+        let frame_s = (self.rows[n - 1].t_s - self.rows[0].t_s) / (n - 1) as f64;
+        ((CHANGING_OVER_S / frame_s).round() as usize).max(1)
+    }
+
+    /// Per row: the true displacement over its frame less the steady
+    /// response's through a lag of `lag_s` (0 for row 0, which has no frame
+    /// before it).
+    fn departures(&self, lag_s: f64) -> Vec<f64> {
+        let steady: Vec<f64> = self
+            .rows
+            .iter()
+            .map(|r| self.true_velocity(r.command))
+            .collect();
+        let means = lag::mean_velocities(self.rows, lag_s, &steady);
+        (0..self.rows.len())
+            .map(|j| match j {
+                0 => 0.0,
+                _ => {
+                    self.rows[j].x_true_mm
+                        - self.rows[j - 1].x_true_mm
+                        - self.direction * self.dt(j) * means[j]
+                }
+            })
+            .collect()
+    }
+
+    /// The gait's lag as the truth shows it: the time constant that best
+    /// explains the departures over [`CHANGING_OVER_S`] after the walk off
+    /// and after each change of command held that long ([`lag::fit`]).
+    fn measured_lag(&self) -> f64 {
+        let (n, span) = (self.rows.len(), self.span());
+        let windows: Vec<usize> = (1..n.saturating_sub(span))
+            .filter(|&j| j == 1 || self.rows[j].command != self.rows[j - 1].command)
+            .filter(|&j| (j..j + span).all(|i| self.rows[i].command == self.rows[j].command))
+            .collect();
+        lag::fit(&windows, span, |tau| self.departures(tau))
     }
 
     /// Free model parameters: A's `action_degree` (all but the linear), then
@@ -314,11 +409,12 @@ impl<'a> Problem<'a> {
         }
     }
 
-    fn velocity(&self, point: &Point, command: f64) -> f64 {
-        let u = command / self.command_scale;
-        self.a_star.eval(command)
+    /// The mean velocity over row `j`'s frame of the A at `point`, through
+    /// the lag.
+    fn velocity(&self, point: &Point, j: usize) -> f64 {
+        self.star_means[j]
             + (0..self.action_degree)
-                .map(|k| point.model[k] * u.powi(Self::action_power(k)))
+                .map(|k| point.model[k] * self.basis_means[k][j])
                 .sum::<f64>()
     }
 
@@ -330,7 +426,7 @@ impl<'a> Problem<'a> {
     fn sensor_at(&self, point: &Point, obs: f64) -> (f64, f64) {
         let w = self.w(obs);
         let corrections = &point.model[self.action_degree..];
-        let (mut v, mut d) = (self.s_star.eval(obs), self.s_star.derivative().eval(obs));
+        let (mut v, mut d) = (self.s_star.eval(obs), self.s_star_slope.eval(obs));
         for (i, c) in corrections.iter().enumerate() {
             v += c * w.powi(i as i32);
             if i > 0 {
@@ -373,18 +469,14 @@ impl<'a> Problem<'a> {
                 let dt = self.dt(j);
                 let r = point.path[j]
                     - point.path[j - 1]
-                    - self.direction * dt * self.velocity(point, row.command);
+                    - self.direction * dt * self.velocity(point, j);
                 entries.clear();
                 entries.push((j - 1, 1.0));
                 if j > 1 {
                     entries.push((j - 2, -1.0));
                 }
-                let u = row.command / self.command_scale;
                 for k in 0..self.action_degree {
-                    entries.push((
-                        free + k,
-                        -self.direction * dt * u.powi(Self::action_power(k)),
-                    ));
+                    entries.push((free + k, -self.direction * dt * self.basis_means[k][j]));
                 }
                 let sd = if self.changing[j] {
                     self.noise.changing_mm
@@ -415,7 +507,13 @@ impl<'a> Problem<'a> {
     /// The Gauss-Newton normal equations at `point`: the Fisher information
     /// `J' W J`, the gradient `J' W r`, and the sum of squares' parts.
     fn normal_equations(&self, point: &Point) -> Normal {
-        let mut normal = Normal::zeros(self.rows.len() - 1, self.model_params());
+        self.normal_equations_in(point, self.model_params())
+    }
+
+    /// The same with the first `q` model columns only (0: the path's
+    /// equations alone, the models held).
+    fn normal_equations_in(&self, point: &Point, q: usize) -> Normal {
+        let mut normal = Normal::zeros(self.rows.len() - 1, q);
         self.visit_rows(point, |w, r, entries| normal.add(w, r, entries));
         normal
     }
@@ -431,6 +529,45 @@ impl<'a> Problem<'a> {
     }
 
     fn floor(&self) -> Option<Floor> {
+        let (action_var, sensor_var) = self.metric_variances()?;
+        // The same bound with the steady process noise at its Gaussian core:
+        // how much a likelihood that knew the tails could gain, at most.
+        let core = Self {
+            noise: Noise {
+                steady_mm: self.noise.steady_core_mm,
+                ..self.noise
+            },
+            ..self.clone()
+        };
+        let core_var = core.metric_variances().unwrap_or((f64::NAN, f64::NAN));
+        let by_obs: Vec<(f64, f64)> = self.reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
+        let best_action =
+            metrics::best_polynomial_rmse(&self.reference.action, self.action_degree)?;
+        let best_sensor = metrics::best_polynomial_rmse(&by_obs, self.sensor_degree)?;
+        let (limit_action, limit_sensor) =
+            self.likelihood_limit()
+                .map_or((f64::NAN, f64::NAN), |(a, s)| {
+                    (
+                        metrics::action_error(&a, &self.reference.action).rmse,
+                        metrics::sensor_error(&s, &self.reference.sensor).rmse,
+                    )
+                });
+        Some(Floor {
+            action_rmse_mm_s: best_action.hypot(action_var.sqrt()),
+            sensor_rmse_mm: best_sensor.hypot(sensor_var.sqrt()),
+            action_likelihood_mm_s: limit_action.hypot(action_var.sqrt()),
+            sensor_likelihood_mm: limit_sensor.hypot(sensor_var.sqrt()),
+            action_core_mm_s: best_action.hypot(core_var.0.sqrt()),
+            sensor_core_mm: best_sensor.hypot(core_var.1.sqrt()),
+            action_sd_mm_s: action_var.sqrt(),
+            sensor_sd_mm: sensor_var.sqrt(),
+            noise: self.noise,
+        })
+    }
+
+    /// The variance parts of the two metrics' floors: each metric linearised
+    /// at the truth, pushed through the models' covariance bound.
+    fn metric_variances(&self) -> Option<(f64, f64)> {
         let covariance = self.model_covariance(&self.truth())?;
         let da = self.action_degree;
         // Action metric: e = k A(c) - v after the best k; linearised at A*,
@@ -459,16 +596,7 @@ impl<'a> Problem<'a> {
                 .view((da, da), (self.sensor_degree + 1, self.sensor_degree + 1))
                 .into_owned(),
         );
-        let by_obs: Vec<(f64, f64)> = self.reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
-        let best_action = metrics::best_polynomial_rmse(&self.reference.action, da)?;
-        let best_sensor = metrics::best_polynomial_rmse(&by_obs, self.sensor_degree)?;
-        Some(Floor {
-            action_rmse_mm_s: best_action.hypot(action_var.sqrt()),
-            sensor_rmse_mm: best_sensor.hypot(sensor_var.sqrt()),
-            action_sd_mm_s: action_var.sqrt(),
-            sensor_sd_mm: sensor_var.sqrt(),
-            noise: self.noise,
-        })
+        Some((action_var, sensor_var))
     }
 
     /// A at `point`, in raw units.
@@ -515,6 +643,7 @@ fn metric_variance(basis: &DMatrix<f64>, gauge: &[Vec<f64>], covariance: &DMatri
 
 /// Points of a measured curve, sorted and without repeated abscissae, for
 /// [`metrics::interpolate`] (extrapolated from the end segments).
+#[derive(Clone)]
 struct Table(Vec<(f64, f64)>);
 
 impl Table {

@@ -82,6 +82,14 @@ impl Aggregate {
                         .map(|f| (f.action_rmse_mm_s, f.action_crb_rmse_mm_s)),
                 ),
                 sensor: FloorRatio::of(ok.iter().map(|f| (f.sensor_rmse_mm, f.sensor_crb_rmse_mm))),
+                action_likelihood: FloorRatio::of(
+                    ok.iter()
+                        .map(|f| (f.action_rmse_mm_s, f.action_likelihood_floor_mm_s)),
+                ),
+                sensor_likelihood: FloorRatio::of(
+                    ok.iter()
+                        .map(|f| (f.sensor_rmse_mm, f.sensor_likelihood_floor_mm)),
+                ),
             },
             failed: trials
                 .iter()

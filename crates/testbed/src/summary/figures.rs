@@ -77,18 +77,46 @@ figures! {
     /// The information floor on the sensor metric, mm.
     @serde(default = "nan")
     sensor_crb_rmse_mm,
+    /// The likelihood's floor on the action metric: where the efficient
+    /// estimator of the floor's model lands on this trial's frames (its limit
+    /// with noise-free readings, and the floor's variance), mm/s. Above the
+    /// floor (the metric's floor) by what fitting in the likelihood's loss
+    /// rather than the metric's costs.
+    @serde(default = "nan")
+    action_likelihood_floor_mm_s,
+    /// The likelihood's floor on the sensor metric, mm.
+    @serde(default = "nan")
+    sensor_likelihood_floor_mm,
+    /// The information floor on the action metric with the steady process
+    /// noise at its Gaussian core (`floor_steady_core_noise_mm`): about what
+    /// the floor would be if a likelihood knew the noise's heavy tails; the
+    /// gap to `action_crb_rmse_mm_s` is what the floor's Gaussian noise
+    /// costs it, mm/s.
+    @serde(default = "nan")
+    action_core_floor_mm_s,
+    /// The same on the sensor metric, mm.
+    @serde(default = "nan")
+    sensor_core_floor_mm,
     /// The reading noise the floor found in the trial's ground truth, px.
     @serde(default = "nan")
     floor_reading_noise_px,
     /// The process noise it found per frame of a steady walk, mm.
     @serde(default = "nan")
     floor_steady_noise_mm,
+    /// The steady process noise's Gaussian core it found (1.4826 times the
+    /// median absolute summed departure, per frame), mm.
+    @serde(default = "nan")
+    floor_steady_core_noise_mm,
     /// The process noise it found per frame while the gait changes over, mm.
     @serde(default = "nan")
     floor_changing_noise_mm,
     /// The location's bob about its smooth walk it found, mm.
     @serde(default = "nan")
     floor_bob_mm,
+    /// The time constant of the gait's lag after a change of command it
+    /// found, s.
+    @serde(default = "nan")
+    floor_lag_s,
     /// `| |k / b| - 1 |`.
     consistency,
     /// Simulated seconds per wall-clock second of the trial's physics.
@@ -237,10 +265,18 @@ impl Figures {
             sensor_start_rmse_mm: start.unwrap_or(f64::NAN),
             action_crb_rmse_mm_s: outcome.floor.map_or(f64::NAN, |f| f.action_rmse_mm_s),
             sensor_crb_rmse_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_rmse_mm),
+            action_likelihood_floor_mm_s: outcome
+                .floor
+                .map_or(f64::NAN, |f| f.action_likelihood_mm_s),
+            sensor_likelihood_floor_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_likelihood_mm),
             floor_reading_noise_px: outcome.floor.map_or(f64::NAN, |f| f.noise.reading_px),
             floor_steady_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.steady_mm),
             floor_changing_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.changing_mm),
             floor_bob_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.bob_mm),
+            floor_lag_s: outcome.floor.map_or(f64::NAN, |f| f.noise.lag_s),
+            floor_steady_core_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.steady_core_mm),
+            action_core_floor_mm_s: outcome.floor.map_or(f64::NAN, |f| f.action_core_mm_s),
+            sensor_core_floor_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_core_mm),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
             learner_wall_s: outcome.learner_wall_s,

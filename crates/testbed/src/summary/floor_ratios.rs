@@ -69,13 +69,17 @@ impl FloorRatio {
     }
 }
 
-/// Both models' [`FloorRatio`]s.
+/// Both models' [`FloorRatio`]s, against both floors.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct FloorRatios {
-    /// The action model's (mm/s).
+    /// The action model's, against the metric's floor (mm/s).
     pub action: FloorRatio,
-    /// The sensor model's (mm).
+    /// The sensor model's, against the metric's floor (mm).
     pub sensor: FloorRatio,
+    /// The action model's, against the likelihood's floor (mm/s).
+    pub action_likelihood: FloorRatio,
+    /// The sensor model's, against the likelihood's floor (mm).
+    pub sensor_likelihood: FloorRatio,
 }
 
 #[cfg(test)]
