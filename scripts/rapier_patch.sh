@@ -22,7 +22,9 @@ fetch() {
     local dir=$work/rapier3d-$1
     if [ ! -d "$dir" ]; then
         mkdir -p "$work"
-        curl -sSfL -o "$work/rapier3d-$1.crate" "https://static.crates.io/crates/rapier3d/rapier3d-$1.crate" ||
+        # python3, not curl: a fresh machine has python3 and may lack curl.
+        python3 -c 'import sys, urllib.request; urllib.request.urlretrieve(sys.argv[1], sys.argv[2])' \
+            "https://static.crates.io/crates/rapier3d/rapier3d-$1.crate" "$work/rapier3d-$1.crate" ||
             { echo "rapier_patch: could not fetch rapier3d $1 from static.crates.io" >&2; exit 1; }
         tar -xzf "$work/rapier3d-$1.crate" -C "$work"
     fi
