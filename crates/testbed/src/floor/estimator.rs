@@ -8,7 +8,7 @@
 //!   their joint likelihood. It treats every location as a parameter, so at
 //!   real process noise it is biased (the Neyman-Scott problem: as many
 //!   nuisance parameters as frames) and does worse than the floor; kept to
-//!   show that, and as the start of the efficient one.
+//!   show that (the test asserts it).
 //!
 //! The path is integrated out by Laplace's method. For fixed models the
 //! negative log likelihood of path and readings is a sum of squares whose
