@@ -30,7 +30,7 @@ EXAMPLES = os.path.join(ROOT, "target", "release", "examples")
 # Every binary whose flags are listed, in the order of the page. `view` is built only with the
 # `rerun` feature (`cargo run --features rerun --example view -- --help`), so it is not here.
 BINARIES = ["train", "replay", "benchmark", "sweep", "measure_action", "measure_sensor",
-            "train_synthetic", "learner_check", "fingerprint", "peer_trace", "reference"]
+            "learner_check", "fingerprint", "peer_trace", "reference"]
 DURATION = "60"  # s: long enough that every learner has models (SCASM starts at 30 s)
 
 # What each file is. `trial-<seed>/` stands for every trial's folder.

@@ -53,6 +53,18 @@ impl ScenarioArgs {
     }
 }
 
+/// Refuses a scenario whose trials do not walk the robot in rapier, for a
+/// command (`command`) that measures or shows that robot.
+pub fn needs_rapier(scenario: &Scenario, command: &str) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        scenario.world == testbed::world::WorldKind::Rapier,
+        "{command} measures or shows the robot in rapier, and trial.world is {}: leave \
+         --world and trial.world out, or use train, replay, benchmark or sweep, which take any world",
+        scenario.world.name()
+    );
+    Ok(())
+}
+
 /// The flags that choose a run's trials and learner; each is a setting (named
 /// in brackets) and, when given, overrides the scenario file and `--set`.
 #[derive(Debug, Clone, clap::Args)]
@@ -77,6 +89,10 @@ pub struct TrialArgs {
     /// action-from-sensor [trial.mode].
     #[arg(long)]
     pub mode: Option<String>,
+    /// The world the trials walk in: rapier (the robot, the default) or
+    /// synthetic (a point robot with no physics) [trial.world].
+    #[arg(long)]
+    pub world: Option<String>,
 }
 
 impl TrialArgs {
@@ -100,6 +116,9 @@ impl TrialArgs {
         }
         if let Some(m) = &self.mode {
             s.push(format!("trial.mode={m}"));
+        }
+        if let Some(w) = &self.world {
+            s.push(format!("trial.world={w}"));
         }
         s
     }
@@ -153,6 +172,9 @@ impl RerunArgs {
             return Ok(());
         };
         self.check()?;
+        if let Some(t) = trials.first() {
+            needs_rapier(t.scenario, "--rerun")?;
+        }
         let rows: Vec<_> = trials.iter().map(|t| t.row.clone()).collect();
         let seed = self
             .rerun_seed

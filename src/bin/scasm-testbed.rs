@@ -47,11 +47,6 @@ const COMMANDS: &[Command] = &[
         "record a walk for MuJoCo and time this build's step on it",
         |n, a| commands::peer_trace::main(parse_from(Some(n), a)),
     ),
-    (
-        "train-synthetic",
-        "SCASM on the synthetic world (no physics)",
-        |n, a| commands::train_synthetic::main(parse_from(Some(n), a)),
-    ),
     #[cfg(feature = "rerun")]
     ("view", "watch a trial in the Rerun viewer", |n, a| {
         commands::view::main(parse_from(Some(n), a))

@@ -24,6 +24,7 @@ pub struct Args {
 /// Runs the command with its parsed flags.
 pub fn main(args: Args) -> Result<()> {
     let scenario = args.scenario.scenario()?;
+    crate::needs_rapier(&scenario, "measure_action")?;
     let (description, sim_config) = (&scenario.description, scenario.sim);
     let started = std::time::Instant::now();
     let commands = scenario.scale().paper_commands();

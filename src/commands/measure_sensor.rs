@@ -57,6 +57,7 @@ fn save_frame(
 pub fn main(args: Args) -> Result<()> {
     ensure!(args.readings > 0, "--readings must be at least 1");
     let scenario = args.scenario.scenario()?;
+    crate::needs_rapier(&scenario, "measure_sensor")?;
     let (description, config) = (&scenario.description, scenario.sim);
     let distances = measure::paper_distances_m(scenario.scale());
     let started = std::time::Instant::now();

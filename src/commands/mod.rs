@@ -14,6 +14,5 @@ pub mod peer_trace;
 pub mod replay;
 pub mod sweep;
 pub mod train;
-pub mod train_synthetic;
 #[cfg(feature = "rerun")]
 pub mod view;

@@ -59,7 +59,15 @@ pub fn main(args: Args) -> Result<()> {
     output::write_config(&out, &scenario, &made_by)?;
     let started = std::time::Instant::now();
 
-    println!("Measuring the robot's true models (stopwatch and stand-and-read protocols)...");
+    println!(
+        "{}",
+        match scenario.world {
+            testbed::world::WorldKind::Rapier =>
+                "Measuring the robot's true models (stopwatch and stand-and-read protocols)...",
+            testbed::world::WorldKind::Synthetic =>
+                "The synthetic world's true models (its own, no measuring)...",
+        }
+    );
     let models = reference::measured_models(&scenario, Some(&args.cache))?;
     println!(
         "  {} (cache key {})",
@@ -154,9 +162,13 @@ pub fn main(args: Args) -> Result<()> {
     println!("  {figures} figures (PNG and SVG) and index.html written");
 
     println!(
-        "\n{} trials: the physics {:.0}x real time, the learner {:.1} ms a trial (means); \
+        "\n{} trials: the {} {:.0}x real time, the learner {:.1} ms a trial (means); \
          whole run {:.1} s wall",
         rows.len(),
+        match scenario.world {
+            testbed::world::WorldKind::Rapier => "physics",
+            testbed::world::WorldKind::Synthetic => "synthetic world",
+        },
         aggregate.mean.realtime_factor,
         1000.0 * aggregate.mean.learner_wall_s,
         started.elapsed().as_secs_f64(),

@@ -46,6 +46,7 @@ pub fn main(args: Args) -> Result<()> {
         "--speed must be 0 (as fast as it runs) or positive"
     );
     let scenario = args.scenario.scenario()?;
+    crate::needs_rapier(&scenario, "view")?;
     println!("Measuring (or reading from the cache) the robot's true models...");
     let models = testbed::reference::measured_models(&scenario, Some(&args.cache))?;
     let reference = models.reference();

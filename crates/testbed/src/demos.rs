@@ -6,11 +6,12 @@
 use scasm::{CalibrationLearner, Mode, Polynomial, Scasm};
 
 use crate::behaviour::{ConstantWalk, Phase};
-use crate::experiment::behaviour_for;
+use crate::experiment::{behaviour_for, world_for};
 use crate::reference::MeasuredModels;
 use crate::reference::Reference;
 use crate::scenario::Scenario;
 use crate::trial::{self, FrameRecord, Recording, TraceRow, TrialConfig, TrialError, TrialRunner};
+use crate::world::World;
 
 /// The command of the constant walk (Fig. 2a).
 pub const CONSTANT_COMMAND: f64 = 200.0;
@@ -81,12 +82,11 @@ pub fn run_demos(
         arrived: false,
     };
     let reference = models.reference();
-    let mut runner = TrialRunner::with_behaviour(
-        &scenario.description,
-        walk_sim,
+    let mut runner = TrialRunner::in_world_with(
+        world_for(scenario, walk_sim, &config)?,
         config.clone(),
         Box::new(walk),
-    )?;
+    );
     let walk_frames = record_phases(&mut runner, 1)?;
     let constant_walk = learn(
         walk_frames,
@@ -99,7 +99,7 @@ pub fn run_demos(
         .ok_or_else(|| TrialError::LearnerSetup("the constant walk saw too little".into()))?;
 
     // One cycle of the training behaviour, recorded once and fed to both.
-    let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
+    let mut runner = TrialRunner::in_world(world_for(scenario, scenario.sim, &config)?, config)?;
     let cycle = record_phases(&mut runner, 2)?;
     let sensor_from_a0 = learn(
         cycle.clone(),
@@ -122,7 +122,10 @@ pub fn run_demos(
 
 /// Records frames until the behaviour has changed phase `changes` times (or
 /// the runner's time is up).
-fn record_phases(runner: &mut TrialRunner, changes: usize) -> Result<Vec<FrameRecord>, TrialError> {
+fn record_phases(
+    runner: &mut TrialRunner<Box<dyn World>>,
+    changes: usize,
+) -> Result<Vec<FrameRecord>, TrialError> {
     let mut phase: Phase = runner.behaviour().phase();
     let mut seen = 0;
     runner.record_until(|b| {

@@ -1,8 +1,9 @@
 //! The one run pipeline every run kind uses: a scenario's trial is recorded
-//! (the world, with the training behaviour's thresholds from the measured
+//! (its world, [`crate::world`], with the training behaviour's thresholds from the measured
 //! sensor model), then any learner runs over the recording and is judged
 //! against the measured models; many seeds run in parallel.
 
+use quadsim::SimConfig;
 use rayon::prelude::*;
 
 use crate::behaviour::BehaviourConfig;
@@ -11,6 +12,7 @@ use crate::metrics;
 use crate::reference::MeasuredModels;
 use crate::scenario::Scenario;
 use crate::trial::{self, Recording, TrialConfig, TrialError, TrialOutcome};
+use crate::world::{self, World};
 
 /// Where the behaviour turns round, relative to the ends of the test range, m:
 /// at the reading expected this far inside the near end (the robot needs about
@@ -85,17 +87,32 @@ pub fn trial_config(
     })
 }
 
+/// The world of `scenario` for a trial of `config` (its seed and its changes
+/// of the world), with the world's settings `sim`: the scenario's, or a
+/// demonstration's own start.
+pub fn world_for(
+    scenario: &Scenario,
+    sim: SimConfig,
+    config: &TrialConfig,
+) -> Result<Box<dyn World>, TrialError> {
+    Ok(world::build(
+        scenario.world,
+        &scenario.description,
+        sim,
+        scenario.scale(),
+        config.seed,
+        config.changes.clone(),
+    )?)
+}
+
 /// Records one trial of `scenario` from `seed`: the world only.
 pub fn record(
     scenario: &Scenario,
     models: &MeasuredModels,
     seed: u64,
 ) -> Result<Recording, TrialError> {
-    trial::record(
-        &scenario.description,
-        scenario.sim,
-        trial_config(scenario, models, seed)?,
-    )
+    let config = trial_config(scenario, models, seed)?;
+    trial::record_in(world_for(scenario, scenario.sim, &config)?, config)
 }
 
 /// Runs learner `name` (set up for `scenario`) over a recording, judged

@@ -2,8 +2,9 @@
 //!
 //! The robot side knows nothing of learning and the learner knows nothing of
 //! physics; this crate connects them. It holds the paper's training behaviour
-//! (section II), its evaluation protocol (section VII), the seeding scheme, and a
-//! synthetic point-robot world used to check the learner without physics.
+//! (section II), its evaluation protocol (section VII), the seeding scheme, and the
+//! worlds a trial walks in ([`world`]): the robot in rapier, and a synthetic
+//! point robot used to check a learner without physics.
 #![warn(missing_docs)]
 
 pub mod behaviour;
@@ -27,3 +28,4 @@ pub mod summary;
 pub mod sweep;
 pub mod synthetic;
 pub mod trial;
+pub mod world;

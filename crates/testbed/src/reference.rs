@@ -11,7 +11,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::measure::{self, MeasuredReading, MeasuredVelocity, StopwatchConfig};
 use crate::metrics;
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, SettingError};
+use crate::world::WorldKind;
+use crate::world::synthetic::SyntheticConfig;
 
 /// Readings per distance in the stand-and-read protocol (the paper's 100).
 pub const MEASURE_READINGS: usize = 100;
@@ -134,6 +136,11 @@ pub fn key(scenario: &Scenario) -> String {
         robot_text.hash(&mut h);
     }
     format!("{:?}", scenario.sim).hash(&mut h);
+    // The robot in rapier, the default, keeps the keys it had before the
+    // world was a setting.
+    if scenario.world != WorldKind::Rapier {
+        scenario.world.name().hash(&mut h);
+    }
     format!("{:?}", scenario.stopwatch()).hash(&mut h);
     MEASURE_READINGS.hash(&mut h);
     PROTOCOL_VERSION.hash(&mut h);
@@ -249,6 +256,14 @@ pub fn measured_models(
     scenario: &Scenario,
     cache_dir: Option<&Path>,
 ) -> Result<MeasuredModels, MeasureError> {
+    if scenario.world == WorldKind::Synthetic && !scenario.changes.is_empty() {
+        return Err(MeasureError::Setting(SettingError::BadValue {
+            key: "trial.world".into(),
+            reason: "the synthetic world cannot change during a trial (a point robot has no \
+                     friction, payload or gait to change): remove the scenario's [[change]]s"
+                .into(),
+        }));
+    }
     let mut models = measured_world(&scenario.world(0)?, cache_dir)?;
     check_measured(&models, "the scenario's world")?;
     for (i, change) in scenario.changes.iter().enumerate() {
@@ -274,6 +289,9 @@ pub fn measured_world(
     scenario: &Scenario,
     cache_dir: Option<&Path>,
 ) -> Result<MeasuredModels, SimError> {
+    if scenario.world == WorldKind::Synthetic {
+        return Ok(synthetic_models(scenario));
+    }
     let key = key(scenario);
     let path = cache_dir.map(|d| d.join(format!("reference-{key}.json")));
     if let Some(p) = &path {
@@ -322,6 +340,46 @@ pub fn measured_world(
         }
     }
     Ok(models)
+}
+
+/// The synthetic world's models at the paper's commands and distances (at
+/// the robot's scale), as the protocols would measure them with no noise:
+/// its truth, known exactly.
+fn synthetic_models(scenario: &Scenario) -> MeasuredModels {
+    let world = SyntheticConfig::of(scenario.sim, scenario.scale());
+    let action = scenario
+        .scale()
+        .paper_commands()
+        .into_iter()
+        .map(|command| {
+            let v = world.velocity_mm_s(command);
+            MeasuredVelocity {
+                command,
+                velocity_mm_s: v,
+                std_mm_s: 0.0,
+                timings_mm_s: vec![v],
+                upright: true,
+                blew_up: false,
+            }
+        })
+        .collect();
+    let sensor = measure::paper_distances_m(scenario.scale())
+        .into_iter()
+        .map(|d_m| MeasuredReading {
+            nominal_mm: 1000.0 * d_m,
+            distance_mm: 1000.0 * d_m,
+            distance_std_mm: 0.0,
+            obs_px: world.obs_px(1000.0 * d_m),
+            std_px: 0.0,
+            missed: 0,
+        })
+        .collect();
+    MeasuredModels {
+        action,
+        sensor,
+        from_cache: false,
+        changes: Vec::new(),
+    }
 }
 
 /// The reference the learned models are judged against: the measured models.

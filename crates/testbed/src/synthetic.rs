@@ -1,29 +1,17 @@
-//! A world with no physics for checking a learner: a point robot on a line whose
-//! true action model is a made-up, clearly nonlinear monotone curve and whose
-//! camera is an ideal pinhole (`obs = k / distance`) with Gaussian pixel noise.
-//! It runs the paper's behaviour and judges the result by the paper's protocol.
+//! The paper's trial in the synthetic world ([`crate::world::SyntheticWorld`])
+//! at the ERS-7's scale, for checking a learner on its own in tests and
+//! benchmarks: the trial is walked by the same runner as any other
+//! ([`TrialRunner`]), fed to the learner the one way learners are fed
+//! ([`trial::feed`]), and judged against the world's own truth. A run of
+//! trials in it with every figure is `train --world synthetic`.
 
-use rand_distr::{Distribution, Normal};
-use scasm::{CalibrationLearner, Event, EventError, Polynomial};
+use scasm::{CalibrationLearner, Polynomial};
 
-use crate::behaviour::{Behaviour, BehaviourConfig, Phase, TrainingBehaviour};
+use crate::behaviour::BehaviourConfig;
 use crate::metrics::{self, AffineError, ScaledError};
-use crate::seeds::{self, Stream};
-
-/// The synthetic robot's true forward speed (mm/s) under `command`: monotone,
-/// saturating forwards, slower backwards, and not a polynomial.
-pub fn true_velocity_mm_s(command: f64) -> f64 {
-    let u = command / 300.0;
-    330.0 * (1.3 * u).tanh() / 1.3_f64.tanh() + 25.0 * u * u
-}
-
-/// The synthetic camera's noise-free reading (px) of a 200 mm band at `distance_mm`
-/// through a lens of focal length 192 px.
-pub fn true_obs_px(distance_mm: f64) -> f64 {
-    SENSOR_K_PX_MM / distance_mm
-}
-
-const SENSOR_K_PX_MM: f64 = 384.0 * 200.0;
+use crate::trial::{self, Recording, TrialConfig, TrialError, TrialRunner};
+use crate::world::synthetic::{SyntheticConfig, SyntheticWorld};
+pub use crate::world::synthetic::{true_obs_px, true_velocity_mm_s};
 
 /// The paper's 31 test commands: every multiple of 20 in [-300, 300].
 pub fn test_commands() -> impl Iterator<Item = f64> {
@@ -87,39 +75,43 @@ pub fn measured_sensor() -> Vec<(f64, f64)> {
     test_distances_mm().map(|d| (d, true_obs_px(d))).collect()
 }
 
-/// Runs one trial of `learner` with the paper's behaviour from `seed`.
+/// Records one trial of the paper's behaviour (turning at the readings of
+/// 1.1 and 3.8 m) in the synthetic world from `seed`.
+pub fn record(config: &SyntheticTrialConfig, seed: u64) -> Result<Recording, TrialError> {
+    let world = SyntheticWorld::new(
+        SyntheticConfig {
+            frame_period_s: config.frame_dt_s,
+            noise_px: config.noise_px,
+            start_distance_mm: config.start_distance_mm,
+            scale: quadsim::RobotScale::ONE,
+        },
+        seed,
+    );
+    let trial = TrialConfig {
+        duration_s: config.duration_s,
+        seed,
+        behaviour: BehaviourConfig::paper(300.0, true_obs_px(1100.0), true_obs_px(3800.0)),
+        judge_every_s: config.duration_s,
+        blank: Default::default(),
+        changes: Vec::new(),
+    };
+    let frames = TrialRunner::in_world(world, trial)?.record_until(|_| false)?;
+    Ok(Recording {
+        seed,
+        frames,
+        realtime_factor: f64::NAN,
+    })
+}
+
+/// Runs one trial of `learner` in the synthetic world from `seed`
+/// ([`record`], then every frame fed to it) and judges it.
 pub fn run_trial(
     learner: &mut dyn CalibrationLearner,
     config: &SyntheticTrialConfig,
     seed: u64,
-) -> Result<SyntheticOutcome, EventError> {
-    let behaviour_config = BehaviourConfig::paper(300.0, true_obs_px(1100.0), true_obs_px(3800.0));
-    let mut behaviour = TrainingBehaviour::new(
-        behaviour_config,
-        seeds::rng(seed, Stream::Behaviour),
-        Phase::Forwards,
-    );
-    let mut noise_rng = seeds::rng(seed, Stream::SensorNoise);
-    let noise = Normal::new(0.0, config.noise_px.max(0.0)).unwrap_or_else(|_| unreachable!());
-
-    let frames = (config.duration_s / config.frame_dt_s).round() as u64;
-    let mut distance_mm = config.start_distance_mm;
-    for k in 0..frames {
-        let t_s = k as f64 * config.frame_dt_s;
-        let command = behaviour.command(t_s);
-        learner.handle(Event::Command {
-            t_s,
-            dt_s: config.frame_dt_s,
-            command,
-        })?;
-        distance_mm -= true_velocity_mm_s(command) * config.frame_dt_s;
-        let t_next = (k + 1) as f64 * config.frame_dt_s;
-        let obs_px = true_obs_px(distance_mm) + noise.sample(&mut noise_rng);
-        learner.handle(Event::Reading {
-            t_s: t_next,
-            obs_px,
-        })?;
-        behaviour.observe(t_next, Some(obs_px));
+) -> Result<SyntheticOutcome, TrialError> {
+    for frame in &record(config, seed)?.frames {
+        trial::feed(learner, frame)?;
     }
     Ok(judge(learner))
 }

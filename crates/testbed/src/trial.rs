@@ -7,8 +7,7 @@
 //! replayed from disk.
 
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
-use rand::Rng;
-use scasm::{CalibrationLearner, Event, EventError, Polynomial};
+use scasm::{CalibrationLearner, EventError, Polynomial};
 
 use crate::behaviour::{Behaviour, BehaviourConfig};
 pub use crate::blanks::Blanks;
@@ -16,6 +15,8 @@ use crate::floor::{Floor, Sample};
 use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
+pub use crate::world::{FrameRecord, Truth};
+use crate::world::{RapierWorld, World, WorldError};
 
 /// What went wrong in a trial.
 #[derive(Debug, thiserror::Error)]
@@ -50,6 +51,15 @@ pub enum TrialError {
         /// What failed.
         source: Box<TrialError>,
     },
+}
+
+impl From<WorldError> for TrialError {
+    fn from(e: WorldError) -> Self {
+        match e {
+            WorldError::Sim(e) => TrialError::Sim(e),
+            other => TrialError::Recording(other.to_string()),
+        }
+    }
 }
 
 impl TrialError {
@@ -88,61 +98,6 @@ pub struct TrialConfig {
     /// frame that starts at or after each time (s), the world's settings
     /// become these (see [`QuadrupedSim::change_world`]).
     pub changes: Vec<(f64, SimConfig)>,
-}
-
-/// What the world records of one camera frame: what a learner may see (the
-/// command in force over the frame and the reading at its end, if any) and,
-/// kept apart, the ground truth at the frame's end.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrameRecord {
-    /// Start of the frame, s.
-    pub t_s: f64,
-    /// Length of the frame, s.
-    pub dt_s: f64,
-    /// The command in force over the frame.
-    pub command: f64,
-    /// The reading at the frame's end, px, if the frame had one.
-    pub obs_px: Option<f64>,
-    /// Ground truth at the frame's end (never shown to a learner).
-    pub truth: Truth,
-}
-
-/// Ground truth at one moment.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Truth {
-    /// Distance to the beacon along the line of approach, mm.
-    pub x_mm: f64,
-    /// Offset from the line of approach, mm (left positive).
-    pub lateral_mm: f64,
-    /// The torso's heading, rad (0 faces the beacon).
-    pub yaw_rad: f64,
-    /// Whether the torso was upright throughout the frame.
-    pub upright: bool,
-    /// Whether the physics had blown up by the frame's end (see
-    /// [`QuadrupedSim::blew_up_at_s`]).
-    pub blew_up: bool,
-}
-
-impl FrameRecord {
-    /// End of the frame, s: when its reading was taken.
-    pub fn end_s(&self) -> f64 {
-        self.t_s + self.dt_s
-    }
-
-    /// The events a learner gets for this frame: the command over it, then its
-    /// reading (if any).
-    pub fn events(&self) -> impl Iterator<Item = Event> {
-        let command = Event::Command {
-            t_s: self.t_s,
-            dt_s: self.dt_s,
-            command: self.command,
-        };
-        let reading = self.obs_px.map(|obs_px| Event::Reading {
-            t_s: self.end_s(),
-            obs_px,
-        });
-        std::iter::once(command).chain(reading)
-    }
 }
 
 /// Feeds one frame's events to a learner. This is the only way learners are
@@ -211,57 +166,74 @@ impl Recording {
     }
 }
 
-/// The world of a trial in progress: the robot and its behaviour. It knows
-/// nothing of learners; [`feed`] gives its frames to any number of them.
+/// A trial in progress: a world ([`World`]) and the training behaviour
+/// that drives it. It knows nothing of learners; [`feed`] gives its frames
+/// to any number of them.
 #[derive(Debug)]
-pub struct TrialRunner {
+pub struct TrialRunner<W: World = RapierWorld> {
     config: TrialConfig,
-    sim: QuadrupedSim,
+    world: W,
     behaviour: Box<dyn Behaviour>,
     frame: u64,
-    /// The next change of the world to make.
-    next_change: usize,
 }
 
-impl TrialRunner {
-    /// Builds the world for a trial of the training behaviour
-    /// `config.behaviour` names (see [`crate::behaviour::registry`]).
+impl TrialRunner<RapierWorld> {
+    /// Builds the robot's world in rapier for a trial of the training
+    /// behaviour `config.behaviour` names (see [`crate::behaviour::registry`]).
     pub fn new(
         description: &RobotDescription,
         sim_config: SimConfig,
         config: TrialConfig,
     ) -> Result<Self, TrialError> {
-        let behaviour = crate::behaviour::registry::build(
-            config.behaviour,
-            seeds::rng(config.seed, Stream::Behaviour),
-        )
-        .map_err(TrialError::Recording)?;
-        Self::with_behaviour(description, sim_config, config, behaviour)
+        let world = RapierWorld::new(description, sim_config, config.seed, config.changes.clone())?;
+        Self::in_world(world, config)
     }
 
-    /// Builds the world for a trial of another behaviour (`config.behaviour` is
-    /// then unused).
+    /// Builds the robot's world in rapier for a trial of another behaviour
+    /// (`config.behaviour` is then unused).
     pub fn with_behaviour(
         description: &RobotDescription,
         sim_config: SimConfig,
         config: TrialConfig,
         behaviour: Box<dyn Behaviour>,
     ) -> Result<Self, TrialError> {
-        let mut sim_config = sim_config;
-        sim_config.camera.noise_seed = seeds::rng(config.seed, Stream::SensorNoise).next_u64();
-        let sim = QuadrupedSim::new(description, sim_config)?;
-        Ok(Self {
-            config,
-            sim,
-            behaviour,
-            frame: 0,
-            next_change: 0,
-        })
+        let world = RapierWorld::new(description, sim_config, config.seed, config.changes.clone())?;
+        Ok(Self::in_world_with(world, config, behaviour))
     }
 
     /// The simulated robot and world (for viewers; learners never see it).
     pub fn sim(&self) -> &QuadrupedSim {
-        &self.sim
+        self.world.sim()
+    }
+}
+
+impl<W: World> TrialRunner<W> {
+    /// A trial in `world` of the training behaviour `config.behaviour` names
+    /// (see [`crate::behaviour::registry`]). The world was built with
+    /// `config`'s seed and changes ([`crate::world::build`]).
+    pub fn in_world(world: W, config: TrialConfig) -> Result<Self, TrialError> {
+        let behaviour = crate::behaviour::registry::build(
+            config.behaviour,
+            seeds::rng(config.seed, Stream::Behaviour),
+        )
+        .map_err(TrialError::Recording)?;
+        Ok(Self::in_world_with(world, config, behaviour))
+    }
+
+    /// A trial in `world` of another behaviour (`config.behaviour` is then
+    /// unused).
+    pub fn in_world_with(world: W, config: TrialConfig, behaviour: Box<dyn Behaviour>) -> Self {
+        Self {
+            config,
+            world,
+            behaviour,
+            frame: 0,
+        }
+    }
+
+    /// The world the trial walks in.
+    pub fn world(&self) -> &W {
+        &self.world
     }
 
     /// The behaviour driving the robot.
@@ -271,11 +243,7 @@ impl TrialRunner {
 
     /// Frames in the whole trial.
     pub fn total_frames(&self) -> u64 {
-        (self.config.duration_s / self.frame_period_s()).round() as u64
-    }
-
-    fn frame_period_s(&self) -> f64 {
-        self.sim.config().camera.frame_period_s
+        (self.config.duration_s / self.world.frame_period_s()).round() as u64
     }
 
     /// Whether every frame has run.
@@ -284,30 +252,15 @@ impl TrialRunner {
     }
 
     /// Runs one camera frame: the behaviour's command over it, until the camera
-    /// has taken its picture.
+    /// has taken its picture. A reading in a blanked interval is dropped here,
+    /// whatever the world, as if the camera had not seen the beacon.
     pub fn step_frame(&mut self) -> Result<FrameRecord, TrialError> {
-        let dt_s = self.frame_period_s();
+        let dt_s = self.world.frame_period_s();
         let t_s = self.frame as f64 * dt_s;
-        while let Some(&(at_s, world)) = self.config.changes.get(self.next_change) {
-            if at_s > t_s + 1e-9 {
-                break;
-            }
-            self.sim.change_world(world).map_err(SimError::from)?;
-            self.next_change += 1;
-        }
         let command = self.behaviour.command(t_s);
-        self.sim.set_command(command).map_err(SimError::from)?;
-        let mut upright = true;
-        let frame = loop {
-            self.sim.step();
-            upright &= self.sim.is_upright();
-            if let Some(f) = self.sim.take_frame() {
-                break f;
-            }
-        };
-        let obs_px = frame
+        let sensed = self.world.step_frame(t_s, command)?;
+        let obs_px = sensed
             .obs_px
-            .ok()
             .filter(|_| !self.config.blank.contains(t_s + dt_s));
         self.behaviour.observe(t_s + dt_s, obs_px);
         self.frame += 1;
@@ -316,13 +269,7 @@ impl TrialRunner {
             dt_s,
             command,
             obs_px,
-            truth: Truth {
-                x_mm: 1000.0 * self.sim.distance_along_line_m(),
-                lateral_mm: 1000.0 * self.sim.lateral_offset_m(),
-                yaw_rad: self.sim.torso().yaw_rad,
-                upright,
-                blew_up: self.sim.blew_up_at_s().is_some(),
-            },
+            truth: sensed.truth,
         })
     }
 
@@ -342,22 +289,28 @@ impl TrialRunner {
     }
 }
 
-/// Records a whole trial: the world only, no learner.
-pub fn record(
-    description: &RobotDescription,
-    sim_config: SimConfig,
-    config: TrialConfig,
-) -> Result<Recording, TrialError> {
+/// Records a whole trial in `world` (built for `config`): the world only, no
+/// learner.
+pub fn record_in(world: impl World, config: TrialConfig) -> Result<Recording, TrialError> {
     let started = std::time::Instant::now();
     let seed = config.seed;
-    let mut runner = TrialRunner::new(description, sim_config, config)?;
-    let frames = runner.record_until(|_| false)?;
+    let frames = TrialRunner::in_world(world, config)?.record_until(|_| false)?;
     let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
     Ok(Recording {
         seed,
         frames,
         realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
     })
+}
+
+/// Records a whole trial of the robot in rapier: the world only, no learner.
+pub fn record(
+    description: &RobotDescription,
+    sim_config: SimConfig,
+    config: TrialConfig,
+) -> Result<Recording, TrialError> {
+    let world = RapierWorld::new(description, sim_config, config.seed, config.changes.clone())?;
+    record_in(world, config)
 }
 
 /// One row of a learner's trace: one camera frame.

@@ -75,6 +75,9 @@ pub struct Scenario {
     pub robot_file: Option<(String, String)>,
     /// The world, robot controllers and camera.
     pub sim: SimConfig,
+    /// Which world the trials walk in (`trial.world`): the robot in rapier,
+    /// or the synthetic point robot with `sim`'s camera and start.
+    pub world: crate::world::WorldKind,
     /// The learner's name (see [`crate::learners`]).
     pub learner_name: String,
     /// The training behaviour's name (`behaviour.name`, see
@@ -133,6 +136,7 @@ impl Scenario {
             urdf_text,
             robot_file: None,
             sim: SimConfig::default(),
+            world: crate::world::WorldKind::Rapier,
             learner_name: crate::learners::registry::DEFAULT.into(),
             behaviour_name: crate::behaviour::registry::DEFAULT,
             behaviour_design_extra_degree: crate::behaviour::design::EXTRA_DEGREE,

@@ -65,7 +65,7 @@ macro_rules! world_number {
 
 /// Every setting of the robot, trial, camera, world and host; the learners'
 /// settings (`learner.*`) are declared by the learners.
-pub(crate) const SETTINGS: [Entry; 30] = [
+pub(crate) const SETTINGS: [Entry; 31] = [
     Entry {
         key: "robot.file",
         kind: Kind::Text,
@@ -98,6 +98,17 @@ pub(crate) const SETTINGS: [Entry; 30] = [
         range: Some("(0, 86400] s, and past the last camera.blank_s interval"),
         set: Scenario::set_duration,
         get: |s| toml::Value::Float(s.duration_s),
+    },
+    Entry {
+        key: "trial.world",
+        kind: Kind::Text,
+        doc: "the world the trials walk in: the robot in rapier, or a point robot with no physics",
+        range: Some("rapier, synthetic"),
+        set: |s, v| {
+            s.world = crate::world::WorldKind::parse(v)?;
+            Ok(())
+        },
+        get: |s| toml::Value::String(s.world.name().into()),
     },
     Entry {
         key: "trial.seeds",
