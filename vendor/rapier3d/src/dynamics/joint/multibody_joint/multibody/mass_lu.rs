@@ -28,7 +28,8 @@ pub struct MassLu {
 }
 
 impl MassLu {
-    pub(super) fn empty() -> Self {
+    #[doc(hidden)] // Public for the benchmarks against nalgebra's `LU`.
+    pub fn empty() -> Self {
         Self {
             lu: DMatrix::zeros(0, 0),
             swaps: Vec::new(),
@@ -48,7 +49,8 @@ impl MassLu {
     /// definite `m` as `L^T D L`, from the last coordinate to the first.
     /// Beyond [`tree_ldl::MAX_DIM`] coordinates, the dense LU of
     /// [`Self::factor`] (correct for any invertible matrix).
-    pub(super) fn factor_tree(&mut self, m: &DMatrix<Real>, dim: usize) {
+    #[doc(hidden)] // Public for the benchmarks against nalgebra's `LU`.
+    pub fn factor_tree(&mut self, m: &DMatrix<Real>, dim: usize) {
         if dim > tree_ldl::MAX_DIM {
             self.factor(m, dim);
             return;
@@ -57,7 +59,8 @@ impl MassLu {
     }
 
     /// Factors the top-left `dim x dim` block of `m`.
-    pub(super) fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
+    #[doc(hidden)] // Public for the benchmarks against nalgebra's `LU`.
+    pub fn factor(&mut self, m: &DMatrix<Real>, dim: usize) {
         self.tree = None;
         if self.lu.nrows() != dim {
             self.lu = DMatrix::zeros(dim, dim);
