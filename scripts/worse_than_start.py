@@ -1,0 +1,180 @@
+#!/usr/bin/env python3
+"""How often calibration leaves a robot worse than it started (issue 58's
+yardstick): `train` on every robot the testbed takes (the ERS-7, the trotter
+and the fourteen public quadrupeds of scripts/public_robots.sh, as
+published) over the same seeds, then, per robot and in all, the trials whose
+learned models are worse than the uncalibrated start (A0 and the section-IV
+sensor model), by the action model and by the sensor model.
+
+    python3 scripts/worse_than_start.py --seeds 100..110 [--learner NAME]
+        [--out runs/worse-than-start] [--set KEY=VALUE ...] [ROBOT ...]
+
+ROBOT is a shipped robot's name or a robot file's or URDF's path (default:
+all sixteen; the public ones need `bash scripts/public_robots.sh` first,
+which downloads them into target/public-robots). A robot whose run is
+already in OUT (its summary.json, for the same seeds and learner) is not
+run again. Writes OUT/worse_than_start.csv (a row per robot) and
+OUT/worse_than_start.md (the same table, and the total), and prints the table.
+"""
+import argparse
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+PUBLIC = ROOT / "target" / "public-robots"
+ERD = "example-robot-data/robots"
+PUBLIC_URDFS = [
+    "pybullet_data/a1/a1.urdf",
+    "pybullet_data/aliengo/aliengo.urdf",
+    "pybullet_data/laikago/laikago_toes_zup.urdf",
+    "pybullet_data/mini_cheetah/mini_cheetah.urdf",
+    "pybullet_data/quadruped/vision60.urdf",
+    "pybullet_data/quadruped/spirit40.urdf",
+    f"{ERD}/go1_description/urdf/go1.urdf",
+    f"{ERD}/go2_description/urdf/go2.urdf",
+    f"{ERD}/a1_description/urdf/a1.urdf",
+    f"{ERD}/hyq_description/robots/hyq_no_sensors.urdf",
+    f"{ERD}/solo_description/robots/solo12.urdf",
+    f"{ERD}/b1_description/urdf/b1.urdf",
+    f"{ERD}/anymal_b_simple_description/robots/anymal.urdf",
+    f"{ERD}/anymal_c_simple_description/urdf/anymal.urdf",
+]
+FIELDS = ["robot", "trials", "ok", "worse", "worse_action", "worse_sensor",
+          "action_a0_mm_s", "action_mm_s", "sensor_start_mm", "sensor_mm", "seeds_worse"]
+
+
+def robots(given):
+    if given:
+        return given
+    missing = [u for u in PUBLIC_URDFS if not (PUBLIC / u).exists()]
+    if missing:
+        sys.exit(f"worse_than_start: {len(missing)} public robots are not in {PUBLIC} "
+                 f"(the first: {missing[0]}); run `bash scripts/public_robots.sh` first, "
+                 f"or name the robots to run")
+    return ["ers7", "trotter"] + [str(PUBLIC / u) for u in PUBLIC_URDFS]
+
+
+def labels(chosen):
+    """A short name per robot: its file's stem, or where two share one (A1's
+    two copies, ANYmal B's and C's anymal.urdf), its package's folder."""
+    stems = [pathlib.Path(r).stem if pathlib.Path(r).suffix else r for r in chosen]
+    out = []
+    for robot, stem in zip(chosen, stems):
+        parts = pathlib.Path(robot).parts
+        if stems.count(stem) == 1 or len(parts) < 3:
+            out.append(stem)
+        elif parts[-2] in ("urdf", "robots"):
+            out.append(parts[-3])
+        else:
+            out.append(f"{parts[-3]}-{stem}")
+    return out
+
+
+def run(robot, args, out):
+    summary = out / "summary.json"
+    if summary.exists():
+        data = json.loads(summary.read_text())
+        first, end = (int(x) for x in args.seeds.split(".."))
+        seeds = sorted(t.get("seed") for t in data.get("trials", []))
+        if seeds == list(range(first, end)) and args.learner in (None, data.get("learner")):
+            return data
+    cmd = [str(ROOT / "target" / "release" / "examples" / "train"), "--robot", robot,
+           "--seeds", args.seeds, "--out", str(out)]
+    if args.learner:
+        cmd += ["--learner", args.learner]
+    for kv in args.set:
+        cmd += ["--set", kv]
+    log = out.with_suffix(".log")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    with open(log, "w") as f:
+        done = subprocess.run(cmd, cwd=ROOT, stdout=f, stderr=subprocess.STDOUT)
+    if done.returncode != 0 or not summary.exists():
+        tail = log.read_text().strip().splitlines()[-1:] or ["(no output)"]
+        return {"error": f"train failed ({log}): {tail[0]}"}
+    return json.loads(summary.read_text())
+
+
+def row(robot, data):
+    if "error" in data:
+        return {"robot": robot, "trials": 0, "ok": 0, "worse": "", "worse_action": "",
+                "worse_sensor": "", "action_a0_mm_s": "", "action_mm_s": "",
+                "sensor_start_mm": "", "sensor_mm": "", "seeds_worse": data["error"]}
+    mean = data.get("mean", {})
+    fmt = lambda v: "" if v is None else f"{v:.1f}"
+    return {
+        "robot": robot,
+        "trials": len(data["trials"]),
+        "ok": data["trials_ok"],
+        "worse": data["trials_worse_than_start"],
+        "worse_action": data["trials_worse_than_start_action"],
+        "worse_sensor": data["trials_worse_than_start_sensor"],
+        "action_a0_mm_s": fmt(mean.get("action_a0_rmse_mm_s")),
+        "action_mm_s": fmt(mean.get("action_rmse_mm_s")),
+        "sensor_start_mm": fmt(mean.get("sensor_start_rmse_mm")),
+        "sensor_mm": fmt(mean.get("sensor_rmse_mm")),
+        "seeds_worse": " ".join(str(s["seed"]) for s in data["trials_worse_than_start_seeds"]),
+    }
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--seeds", required=True, help="A..B, B excluded (development: 100-999)")
+    p.add_argument("--learner", default=None, help="default: the default learner")
+    p.add_argument("--out", default="runs/worse-than-start")
+    p.add_argument("--set", action="append", default=[], help="a setting for every run")
+    p.add_argument("robots", nargs="*")
+    args = p.parse_args()
+    out = ROOT / args.out
+    subprocess.run(["cargo", "build", "--release", "--quiet", "--example", "train"],
+                   cwd=ROOT, check=True)
+    rows = []
+    chosen = robots(args.robots)
+    for i, (robot, name) in enumerate(zip(chosen, labels(chosen)), 1):
+        print(f"[{i}/{len(chosen)}] {name} ...", flush=True)
+        rows.append(row(name, run(robot, args, out / name)))
+        r = rows[-1]
+        print(f"    {r['ok']} of {r['trials']} ok, {r['worse']} worse "
+              f"({r['worse_action']} by the action model, {r['worse_sensor']} by the sensor)"
+              if r["trials"] else f"    {r['seeds_worse']}", flush=True)
+    with open(out / "worse_than_start.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=FIELDS)
+        w.writeheader()
+        w.writerows(rows)
+    ok = sum(r["ok"] for r in rows if r["trials"])
+    worse = sum(r["worse"] for r in rows if r["trials"])
+    by_a = sum(r["worse_action"] for r in rows if r["trials"])
+    by_s = sum(r["worse_sensor"] for r in rows if r["trials"])
+    failed = [r["robot"] for r in rows if not r["trials"]]
+    lines = [
+        f"Seeds {args.seeds}, learner {args.learner or 'the default'}"
+        + (f", settings {' '.join(args.set)}" if args.set else "") + ".",
+        "",
+        "| robot | trials ok | worse than start (action, sensor) | A0's action error, mm/s | "
+        "learned, mm/s | start's sensor error, mm | learned, mm | seeds worse |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for r in rows:
+        if r["trials"]:
+            lines.append(f"| {r['robot']} | {r['ok']}/{r['trials']} | {r['worse']} "
+                         f"({r['worse_action']}, {r['worse_sensor']}) | {r['action_a0_mm_s']} | "
+                         f"{r['action_mm_s']} | {r['sensor_start_mm']} | {r['sensor_mm']} | "
+                         f"{r['seeds_worse']} |")
+        else:
+            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | |")
+    rate = f"{worse / ok:.1%}" if ok else "-"
+    lines += ["", f"In all: {worse} of {ok} ok trials worse than their start ({rate}; "
+              f"{by_a} by the action model, {by_s} by the sensor model; a trial may be both); "
+              f"the goal is at most 1 in 50 (2 %)."
+              + (f" Runs that failed: {', '.join(failed)}." if failed else "")]
+    text = "\n".join(lines) + "\n"
+    (out / "worse_than_start.md").write_text(text)
+    print()
+    print(text, end="")
+    print(f"tables in {out}/worse_than_start.{{csv,md}}")
+
+
+if __name__ == "__main__":
+    main()
