@@ -43,7 +43,8 @@ PUBLIC_URDFS = [
     f"{ERD}/anymal_c_simple_description/urdf/anymal.urdf",
 ]
 FIELDS = ["robot", "trials", "ok", "worse", "worse_action", "worse_sensor",
-          "action_a0_mm_s", "action_mm_s", "sensor_start_mm", "sensor_mm", "seeds_worse"]
+          "action_a0_mm_s", "action_mm_s", "sensor_start_mm", "sensor_mm", "off_line_max_m",
+          "seeds_worse"]
 
 
 def robots(given):
@@ -101,7 +102,8 @@ def row(robot, data):
     if "error" in data:
         return {"robot": robot, "trials": 0, "ok": 0, "worse": "", "worse_action": "",
                 "worse_sensor": "", "action_a0_mm_s": "", "action_mm_s": "",
-                "sensor_start_mm": "", "sensor_mm": "", "seeds_worse": data["error"]}
+                "sensor_start_mm": "", "sensor_mm": "", "off_line_max_m": "",
+                "seeds_worse": data["error"]}
     mean = data.get("mean", {})
     fmt = lambda v: "" if v is None else f"{v:.1f}"
     return {
@@ -115,8 +117,16 @@ def row(robot, data):
         "action_mm_s": fmt(mean.get("action_rmse_mm_s")),
         "sensor_start_mm": fmt(mean.get("sensor_start_rmse_mm")),
         "sensor_mm": fmt(mean.get("sensor_rmse_mm")),
+        "off_line_max_m": off_line(data),
         "seeds_worse": " ".join(str(s["seed"]) for s in data["trials_worse_than_start_seeds"]),
     }
+
+
+def off_line(data):
+    """The farthest any trial got from its line, m (issue 58 asks within 0.1 m)."""
+    far = [t.get("off_line_max_mm") for t in data["trials"]]
+    far = [f for f in far if isinstance(f, (int, float))]
+    return f"{max(far) / 1000:.2f}" if far else ""
 
 
 def main():
@@ -148,27 +158,31 @@ def main():
     by_a = sum(r["worse_action"] for r in rows if r["trials"])
     by_s = sum(r["worse_sensor"] for r in rows if r["trials"])
     failed = [r["robot"] for r in rows if not r["trials"]]
+    off = [r["robot"] for r in rows if r["off_line_max_m"] and float(r["off_line_max_m"]) > 0.1]
     lines = [
         f"Seeds {args.seeds}, learner {args.learner or 'the default'}"
         + (f", settings {' '.join(args.set)}" if args.set else "") + ".",
         "",
         "| robot | trials ok | worse than start (action, sensor) | A0's action error, mm/s | "
-        "learned, mm/s | start's sensor error, mm | learned, mm | seeds worse |",
-        "|---|---|---|---|---|---|---|---|",
+        "learned, mm/s | start's sensor error, mm | learned, mm | most off its line, m | "
+        "seeds worse |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         if r["trials"]:
             lines.append(f"| {r['robot']} | {r['ok']}/{r['trials']} | {r['worse']} "
                          f"({r['worse_action']}, {r['worse_sensor']}) | {r['action_a0_mm_s']} | "
                          f"{r['action_mm_s']} | {r['sensor_start_mm']} | {r['sensor_mm']} | "
-                         f"{r['seeds_worse']} |")
+                         f"{r['off_line_max_m']} | {r['seeds_worse']} |")
         else:
-            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | |")
+            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | | |")
     rate = f"{worse / ok:.1%}" if ok else "-"
     lines += ["", f"In all: {worse} of {ok} ok trials worse than their start ({rate}; "
               f"{by_a} by the action model, {by_s} by the sensor model; a trial may be both); "
               f"the goal is at most 1 in 50 (2 %)."
-              + (f" Runs that failed: {', '.join(failed)}." if failed else "")]
+              + (f" Runs that failed: {', '.join(failed)}." if failed else ""),
+              "", f"Off their line by more than 0.1 m in some trial (issue 58 asks within 0.1 m): "
+              f"{len(off)} of {len(rows)} robots" + (f" ({', '.join(off)})." if off else ".")]
     text = "\n".join(lines) + "\n"
     (out / "worse_than_start.md").write_text(text)
     print()
