@@ -1,7 +1,7 @@
-//! One training trial on the simulated robot, in two halves that never meet:
-//! the world (the paper's behaviour drives the robot, the head camera reads the
-//! beacon at 20 Hz) records each frame, and a calibration learner is fed each
-//! frame's command and reading, and nothing else. Ground truth is recorded
+//! One training trial, in two halves that never meet: the world (a training
+//! behaviour drives the robot in any [`crate::world::World`], whose camera reads
+//! the beacon at 20 Hz) records each frame, and a calibration learner is fed
+//! each frame's command and reading, and nothing else. Ground truth is recorded
 //! beside them for judging, never shown to a learner. Because the behaviour never
 //! looks at a learner, one recording can feed any number of learners, live or
 //! replayed from disk.
