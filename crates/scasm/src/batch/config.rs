@@ -39,6 +39,17 @@ pub struct BatchMlConfig {
     /// first-order lag whose time constant is learned; `batch-ml-lag`).
     #[cfg_attr(feature = "serde", serde(default))]
     pub lag: bool,
+    /// Whether S is fitted to the forward model at evenly spaced locations
+    /// over the path's range (alike at every distance the robot works at,
+    /// as S is used and judged), rather than at each reading's location
+    /// (each distance weighed by the time the walk spent there).
+    #[cfg_attr(feature = "serde", serde(default = "default_sensor_even"))]
+    pub sensor_even: bool,
+}
+
+#[cfg(feature = "serde")]
+fn default_sensor_even() -> bool {
+    BatchMlConfig::default().sensor_even
 }
 
 #[cfg(feature = "serde")]
@@ -51,7 +62,10 @@ impl Default for BatchMlConfig {
     /// the evaluation seeds): a process noise of an eighth of the typical
     /// speed, four times that while the gait changes over. The window, 150
     /// s, is the default trial: a trial of that length or less is solved
-    /// whole.
+    /// whole. S is fitted evenly over the path: chosen on development seeds
+    /// 100-104 over the ERS-7, the trotter and the fourteen public robots
+    /// (its error over the information floor lower on every one, the
+    /// median over robots 1.35x against 1.56x for `batch-ml-lag`).
     fn default() -> Self {
         Self {
             online: ScasmConfig::default(),
@@ -62,6 +76,7 @@ impl Default for BatchMlConfig {
             transient_noise: 4.0,
             window_s: 150.0,
             lag: false,
+            sensor_even: true,
         }
     }
 }

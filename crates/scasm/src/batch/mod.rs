@@ -2,7 +2,8 @@
 //! later EM work (ICRA 2008): estimate the robot's path `x(t)`, the action model
 //! A and the forward sensor model `g` (reading as a function of location)
 //! jointly from the whole trial so far, then fit the sensor model S (location
-//! from reading) to the solved path against `g`'s noise-free readings.
+//! from reading) to `g`'s noise-free readings at evenly spaced locations over
+//! the solved path's range (`sensor_even`; or at the path's own locations).
 //!
 //! The model: over frame `j` the location moves by `A(C_j) dt_j` plus process
 //! noise (the gait's transients, slips and turns), and each reading is
@@ -143,6 +144,7 @@ fn build(c: &BuildContext, lag: bool) -> Result<Box<dyn CalibrationLearner + Sen
         transient_noise: own.get("transient_noise"),
         window_s: own.get("window_s"),
         lag,
+        sensor_even: own.count("sensor_even") == 1,
     }
     .validate()
     .map_err(|e| e.to_string())?;
@@ -196,6 +198,15 @@ fn batch_settings(d: BatchMlConfig) -> Vec<Setting> {
             "how far back a solve moves the path, s: older frames are held at the last solution \
              (a solve then costs the window's, however long the trial; longer than the trial: \
              the whole trial)",
+        ),
+        Setting::new(
+            "sensor_even",
+            Kind::Count,
+            f64::from(u8::from(d.sensor_even)),
+            (0.0, false, 1.0),
+            "1: S is fitted to the forward model at evenly spaced locations over the path's \
+             range, alike at every distance walked; 0: at each reading's location, each \
+             distance weighed by the time spent there",
         ),
     ]
 }

@@ -13,6 +13,10 @@ use crate::batch::linalg::solve_dense;
 use crate::batch::problem::{MIN_WEIGHT, Models, Problem, TRANSIENT_S, reading_variance};
 use crate::poly_fit::PolynomialFit;
 use crate::polynomial::Polynomial;
+/// Locations at which S is fitted to the forward model, evenly spaced over
+/// the path's range (many more than a cubic's coefficients).
+const SENSOR_FIT_POINTS: usize = 64;
+
 /// A solve's outcome: the solution, its path and A (to start the next solve
 /// from), and its cost.
 pub(crate) struct Solved {
@@ -197,20 +201,35 @@ pub(crate) fn solve(
         scale *= oc.command_scale;
     }
     let action = Polynomial::new(&a_raw[..=oc.action_degree]).filter(Polynomial::is_finite)?;
-    // S: location regressed on the forward model's noise-free reading at each
-    // reading's location, so the data's own spread sets where S is fitted (as
-    // in the paper's fit) and the reading noise biases nothing.
-    let mut sensor_fit = PolynomialFit::new(oc.sensor_degree, gamma);
-    for (j, f) in kept[..split].iter().enumerate() {
-        if f.obs_px.is_some() {
-            let x = kept_path[j + 1];
+    // S: location regressed on the forward model's noise-free reading, so
+    // the reading noise biases nothing. With `sensor_even` (the default), at
+    // evenly spaced locations over the range the path covers, so that S is
+    // fitted alike at every distance the robot works at, as it is used and
+    // judged; without, at each reading's location (the data's own spread,
+    // as in the paper's fit, which weighs each distance by the time spent
+    // there and piles the cubic's misfit onto the distances walked least).
+    let mut sensor_fit = PolynomialFit::new(
+        oc.sensor_degree,
+        if config.sensor_even { 1.0 } else { gamma },
+    );
+    let held_readings = kept[..split].iter().zip(&kept_path[1..=split]);
+    let readings = frames.iter().zip(&path[1..]);
+    if config.sensor_even {
+        let (lo, hi) = kept_path[..=split]
+            .iter()
+            .chain(path.iter())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+        for k in 0..SENSOR_FIT_POINTS {
+            let x = lo + (hi - lo) * k as f64 / (SENSOR_FIT_POINTS - 1) as f64;
             sensor_fit.add(problem.g(&m, x).0, x);
         }
-    }
-    for (j, f) in frames.iter().enumerate() {
-        if f.obs_px.is_some() {
-            let x = path[j + 1];
-            sensor_fit.add(problem.g(&m, x).0, x);
+    } else {
+        for (f, &x) in held_readings.chain(readings) {
+            if f.obs_px.is_some() {
+                sensor_fit.add(problem.g(&m, x).0, x);
+            }
         }
     }
     let sensor = sensor_fit.polynomial()?;
