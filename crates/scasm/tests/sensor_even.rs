@@ -54,8 +54,10 @@ fn sensor_error(model: &Polynomial) -> f64 {
 fn a_batch_learner_fits_its_sensor_model_evenly_over_its_path() {
     let walk = lopsided_walk_with_noise(0.1);
     let fit = |sensor_even: bool| {
-        let mut config = BatchMlConfig::default();
-        config.sensor_even = sensor_even;
+        let config = BatchMlConfig {
+            sensor_even,
+            ..BatchMlConfig::default()
+        };
         let mut learner = BatchMl::new(config.validate().expect("valid"));
         common::feed(&mut learner, &walk);
         sensor_error(&learner.sensor_model().expect("a sensor model"))
