@@ -20,6 +20,7 @@ import argparse
 import csv
 import json
 import pathlib
+import statistics
 import subprocess
 import sys
 
@@ -139,18 +140,12 @@ def ratios(data, error, floor):
     return out
 
 
-def median(v):
-    v = sorted(v)
-    n = len(v)
-    return (v[n // 2] + v[(n - 1) // 2]) / 2 if n else None
-
-
 def over_floor(data):
     """The learned models' errors over their floors, the median trial's:
     `action, sensor`."""
-    a = median(ratios(data, "action_rmse_mm_s", "action_crb_rmse_mm_s"))
-    s = median(ratios(data, "sensor_rmse_mm", "sensor_crb_rmse_mm"))
-    return "" if a is None or s is None else f"{a:.2f}x, {s:.2f}x"
+    a = ratios(data, "action_rmse_mm_s", "action_crb_rmse_mm_s")
+    s = ratios(data, "sensor_rmse_mm", "sensor_crb_rmse_mm")
+    return f"{statistics.median(a):.2f}x, {statistics.median(s):.2f}x" if a and s else ""
 
 
 def start_near_floor(data):

@@ -42,14 +42,9 @@ pub struct BatchMlConfig {
     /// Whether S is fitted to the forward model at evenly spaced locations
     /// over the path's range (alike at every distance the robot works at,
     /// as S is used and judged), rather than at each reading's location
-    /// (each distance weighed by the time the walk spent there).
-    #[cfg_attr(feature = "serde", serde(default = "default_sensor_even"))]
+    /// (each distance weighed by the time the walk spent there). Missing
+    /// from a file: the default's, as every field is.
     pub sensor_even: bool,
-}
-
-#[cfg(feature = "serde")]
-fn default_sensor_even() -> bool {
-    BatchMlConfig::default().sensor_even
 }
 
 #[cfg(feature = "serde")]

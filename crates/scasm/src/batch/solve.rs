@@ -212,8 +212,6 @@ pub(crate) fn solve(
         oc.sensor_degree,
         if config.sensor_even { 1.0 } else { gamma },
     );
-    let held_readings = kept[..split].iter().zip(&kept_path[1..=split]);
-    let readings = frames.iter().zip(&path[1..]);
     if config.sensor_even {
         let (lo, hi) = kept_path[..=split]
             .iter()
@@ -226,7 +224,8 @@ pub(crate) fn solve(
             sensor_fit.add(problem.g(&m, x).0, x);
         }
     } else {
-        for (f, &x) in held_readings.chain(readings) {
+        let held_readings = kept[..split].iter().zip(&kept_path[1..=split]);
+        for (f, &x) in held_readings.chain(frames.iter().zip(&path[1..])) {
             if f.obs_px.is_some() {
                 sensor_fit.add(problem.g(&m, x).0, x);
             }
