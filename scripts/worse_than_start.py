@@ -45,7 +45,8 @@ PUBLIC_URDFS = [
 ]
 FIELDS = ["robot", "trials", "ok", "worse", "worse_action", "worse_sensor",
           "action_a0_mm_s", "action_mm_s", "sensor_start_mm", "sensor_mm",
-          "learned_over_floor", "start_within_floor_goal", "off_line_max_m", "seeds_worse"]
+          "learned_over_floor", "start_within_floor_goal", "in_band_action", "in_band_sensor",
+          "off_line_max_m", "seeds_worse"]
 
 # Issue 58's goal for the learner: within this factor of the information floor.
 FLOOR_GOAL = 1.10
@@ -107,7 +108,8 @@ def row(robot, data):
         return {"robot": robot, "trials": 0, "ok": 0, "worse": "", "worse_action": "",
                 "worse_sensor": "", "action_a0_mm_s": "", "action_mm_s": "",
                 "sensor_start_mm": "", "sensor_mm": "", "learned_over_floor": "",
-                "start_within_floor_goal": "", "off_line_max_m": "",
+                "start_within_floor_goal": "", "in_band_action": "", "in_band_sensor": "",
+                "off_line_max_m": "",
                 "seeds_worse": data["error"]}
     mean = data.get("mean", {})
     fmt = lambda v: "" if v is None else f"{v:.1f}"
@@ -124,6 +126,8 @@ def row(robot, data):
         "sensor_mm": fmt(mean.get("sensor_rmse_mm")),
         "learned_over_floor": over_floor(data),
         "start_within_floor_goal": start_near_floor(data),
+        "in_band_action": in_band(data, "action"),
+        "in_band_sensor": in_band(data, "sensor"),
         "off_line_max_m": off_line(data),
         "seeds_worse": " ".join(str(s["seed"]) for s in data["trials_worse_than_start_seeds"]),
     }
@@ -157,11 +161,29 @@ def start_near_floor(data):
     return sum(1 for x, y in zip(a, s) if min(x, y) <= FLOOR_GOAL) if a and s else ""
 
 
+def in_band(data, model):
+    """`inside/of`: the trials whose measured error of `model` fell inside the
+    learner's predicted 90 % band ("" for a learner that predicts none)."""
+    share = data.get("predicted_band_coverage", {}).get(model, {})
+    return f"{share['yes']}/{share['of']}" if share.get("of") else ""
+
+
+def share_sum(rows, key):
+    """The `inside/of` cells of `rows` summed: (inside, of)."""
+    pairs = [tuple(int(x) for x in r[key].split("/")) for r in rows if r.get(key)]
+    return sum(p[0] for p in pairs), sum(p[1] for p in pairs)
+
+
 def off_line(data):
     """The farthest any trial got from its line, m (issue 58 asks within 0.1 m)."""
     far = [t.get("off_line_max_mm") for t in data["trials"]]
     far = [f for f in far if isinstance(f, (int, float))]
     return f"{max(far) / 1000:.2f}" if far else ""
+
+
+def band_cell(r):
+    """The band columns as one table cell: "4/5, 5/5", or "-"."""
+    return f"{r['in_band_action']}, {r['in_band_sensor']}" if r["in_band_action"] else "-"
 
 
 def main():
@@ -201,9 +223,9 @@ def main():
         "",
         "| robot | trials ok | worse than start (action, sensor) | A0's action error, mm/s | "
         "learned, mm/s | start's sensor error, mm | learned, mm | learned / floor, median "
-        "(action, sensor) | start within 1.10x of its floor | most off its line, m | "
-        "seeds worse |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "(action, sensor) | start within 1.10x of its floor | inside the predicted 90 % band "
+        "(action, sensor) | most off its line, m | seeds worse |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         if r["trials"]:
@@ -211,9 +233,9 @@ def main():
                          f"({r['worse_action']}, {r['worse_sensor']}) | {r['action_a0_mm_s']} | "
                          f"{r['action_mm_s']} | {r['sensor_start_mm']} | {r['sensor_mm']} | "
                          f"{r['learned_over_floor']} | {r['start_within_floor_goal']} | "
-                         f"{r['off_line_max_m']} | {r['seeds_worse']} |")
+                         f"{band_cell(r)} | {r['off_line_max_m']} | {r['seeds_worse']} |")
         else:
-            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | | | | |")
+            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | | | | | |")
     rate = f"{worse / ok:.1%}" if ok else "-"
     lines += ["", f"In all: {worse} of {ok} ok trials worse than their start ({rate}; "
               f"{by_a} by the action model, {by_s} by the sensor model; a trial may be both); "
@@ -224,6 +246,10 @@ def main():
               f"worse than its start in these alone): {near} of {ok}.",
               "", f"Off their line by more than 0.1 m in some trial (issue 58 asks within 0.1 m): "
               f"{len(off)} of {len(rows)} robots" + (f" ({', '.join(off)})." if off else ".")]
+    (a_in, a_of), (s_in, s_of) = share_sum(rows, "in_band_action"), share_sum(rows, "in_band_sensor")
+    if a_of or s_of:
+        lines += ["", f"Measured error inside the learner's predicted 90 % band: action {a_in} "
+                  f"of {a_of}, sensor {s_in} of {s_of} (about 90 % if it knows how sure it is)."]
     text = "\n".join(lines) + "\n"
     (out / "worse_than_start.md").write_text(text)
     print()

@@ -4,6 +4,8 @@
 
 use crate::error::EventError;
 use crate::polynomial::Polynomial;
+#[cfg(feature = "std")]
+use crate::posterior::Posterior;
 
 /// Something that happened, in the host's time (seconds from the start of the run).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +81,16 @@ pub trait CalibrationLearner {
     /// [`crate::Scasm::with_self_check`]); `None` for a learner that does not
     /// check itself (the default).
     fn falling_back(&self) -> Option<bool> {
+        None
+    }
+    /// `draws` draws from the learner's posterior over the robot's true
+    /// responses given what it has seen, in the units of its models; the
+    /// same draws for the same events (seeded from nothing else). `None`
+    /// for a learner that does not know how sure it is (the default), or
+    /// has no models yet.
+    #[cfg(feature = "std")]
+    fn posterior(&self, draws: usize) -> Option<Posterior> {
+        let _ = draws;
         None
     }
 }

@@ -40,6 +40,8 @@ mod learner;
 mod mode;
 mod poly_fit;
 mod polynomial;
+#[cfg(feature = "std")]
+mod posterior;
 mod scasm;
 pub mod self_check;
 mod wls;
@@ -55,6 +57,8 @@ pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
 pub use mode::Mode;
 pub use polynomial::{MAX_COEFFS, Polynomial};
+#[cfg(feature = "std")]
+pub use posterior::{Draw, Posterior};
 pub use scasm::Scasm;
 #[cfg(feature = "std")]
 pub use scasm::declarations::{SCASM, SCASM_EIV, SCASM_PAPER};

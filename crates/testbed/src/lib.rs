@@ -19,6 +19,7 @@ pub mod localiser;
 pub mod measure;
 pub mod metrics;
 pub mod output;
+pub mod predicted;
 pub mod provenance;
 pub mod reference;
 pub mod run_dir;

@@ -13,6 +13,7 @@ use crate::behaviour::{Behaviour, BehaviourConfig};
 pub use crate::blanks::Blanks;
 use crate::floor::{Floor, Sample};
 use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
+use crate::predicted::{DRAWS, Predicted};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
 pub use crate::world::{FrameRecord, Truth};
@@ -385,6 +386,9 @@ pub struct TrialOutcome {
     /// (A0 and the sensor model learned from it on the same frames, section
     /// IV), if it rode along (see [`Comparators::a0_baseline`]).
     pub start: Option<Judgement>,
+    /// The learner's predicted errors of its final models, from its
+    /// posterior, if it reports one (see [`Predicted`]).
+    pub predicted: Option<Predicted>,
     /// When the robot was first seen tipped over, s, if it was.
     pub fell_at_s: Option<f64>,
     /// When the physics blew up, s, if it did.
@@ -542,7 +546,20 @@ pub fn learn(
         })
         .collect();
     let floor = best_degrees.and_then(|degrees| Floor::of(&samples, reference, degrees));
+    let started = std::time::Instant::now();
+    let posterior = learner.posterior(DRAWS);
+    learner_wall += started.elapsed();
+    let predicted = posterior.map(|p| {
+        Predicted::of(
+            reference,
+            end_s,
+            learner.action_model(),
+            learner.sensor_model(),
+            &p,
+        )
+    });
     Ok(TrialOutcome {
+        predicted,
         floor,
         seed: recording.seed,
         last: reference.judge(end_s, learner),

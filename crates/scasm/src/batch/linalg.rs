@@ -1,5 +1,6 @@
 //! The linear algebra the batch solve needs: a symmetric positive definite
-//! tridiagonal factorisation and a small dense solve with pivoting.
+//! tridiagonal factorisation, a small dense solve with pivoting, and a small
+//! Cholesky factorisation.
 
 use std::vec;
 use std::vec::Vec;
@@ -81,6 +82,27 @@ pub(crate) fn solve_dense(a: &mut [f64], b: &mut [f64], q: usize) -> Option<Vec<
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
+/// The lower Cholesky factor `L` of the symmetric positive definite `q x q`
+/// matrix `a` (row-major; `L L' = a`); `None` if it is not positive definite.
+pub(crate) fn cholesky(a: &[f64], q: usize) -> Option<Vec<f64>> {
+    let mut l = vec![0.0; q * q];
+    for r in 0..q {
+        for c in 0..=r {
+            let dot: f64 = (0..c).map(|k| l[r * q + k] * l[c * q + k]).sum();
+            let v = a[r * q + c] - dot;
+            if r == c {
+                if v.is_nan() || v <= 0.0 {
+                    return None;
+                }
+                l[r * q + r] = v.sqrt();
+            } else {
+                l[r * q + c] = v / l[c * q + c];
+            }
+        }
+    }
+    Some(l)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -99,6 +121,19 @@ mod tests {
         for (i, want) in [1.0, 2.0, 3.0, 4.0].iter().enumerate() {
             assert!((mul(i) - want).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn cholesky_factors_back_to_the_matrix() {
+        let a = [4.0, 2.0, 0.4, 2.0, 5.0, 1.0, 0.4, 1.0, 3.0];
+        let l = cholesky(&a, 3).expect("positive definite");
+        for r in 0..3 {
+            for c in 0..3 {
+                let v: f64 = (0..3).map(|k| l[r * 3 + k] * l[c * 3 + k]).sum();
+                assert!((v - a[r * 3 + c]).abs() < 1e-12);
+            }
+        }
+        assert!(cholesky(&[1.0, 2.0, 2.0, 1.0], 2).is_none());
     }
 
     #[test]

@@ -61,6 +61,7 @@
 //! forgetting (`gamma` < 1) frames whose weight is below 1e-6 are left out
 //! too.
 
+mod belief;
 mod config;
 mod frames;
 mod frozen;
@@ -82,6 +83,7 @@ use crate::error::EventError;
 use crate::learner::{CalibrationLearner, Event};
 use crate::mode::Mode;
 use crate::polynomial::Polynomial;
+use crate::posterior::Posterior;
 use crate::scasm::Scasm;
 
 pub use config::{BatchMlConfig, BatchMlParams};
@@ -89,6 +91,12 @@ pub use config::{BatchMlConfig, BatchMlParams};
 /// How much longer a trial past the window has grown since the last solve
 /// of the whole trial when the whole is solved again.
 const REFRESH: f64 = 1.5;
+
+/// The degree of the action model a batch learner believes the truth to be
+/// (the richest it takes; its forward sensor model is its own), against
+/// which its posterior judges the models it reports (see
+/// [`CalibrationLearner::posterior`]).
+const BELIEF_ACTION_DEGREE: usize = crate::MAX_REGRESSORS - 1;
 
 /// The shared settings the batch learners read (their online start's).
 const BATCH_SHARED: &[&str] = &[
@@ -280,7 +288,13 @@ impl BatchMl {
             let start = previous.extended(&self.frames);
             let n = self.frames.len();
             let whole = n as f64 >= REFRESH * self.whole_frames as f64;
-            if let Some(s) = solve(&self.frames, &c, &start, if whole { 0 } else { held }) {
+            if let Some(s) = solve(
+                &self.frames,
+                &c,
+                &start,
+                if whole { 0 } else { held },
+                false,
+            ) {
                 self.solution = Some(s.solution);
                 self.solved = Some(s.start);
                 if whole {
@@ -307,7 +321,7 @@ impl BatchMl {
         let best = starts
             .iter()
             .flatten()
-            .filter_map(|start| solve(&self.frames, &c, start, 0))
+            .filter_map(|start| solve(&self.frames, &c, start, 0, false))
             .min_by(|a, b| a.cost.total_cmp(&b.cost));
         if let Some(mut s) = best {
             // Into the units the host has seen so far: the previous
@@ -411,5 +425,26 @@ impl CalibrationLearner for BatchMl {
         } else {
             self.online.x_s()
         }
+    }
+
+    fn posterior(&self, draws: usize) -> Option<Posterior> {
+        // Only the models of a solve have one (not the online learner's,
+        // reported before the first). The truth is believed to be the
+        // richest model the learner takes, fitted to the whole trial from
+        // the latest solution (in its units: the same gauge is held).
+        self.solution?;
+        let c = self.params.config();
+        let richer = BatchMlConfig {
+            online: ScasmConfig {
+                action_degree: c.online.action_degree.max(BELIEF_ACTION_DEGREE),
+                ..c.online
+            },
+            ..c
+        };
+        let start = self.solved.as_ref()?.extended(&self.frames);
+        let solved = solve(&self.frames, &richer, &start, 0, true)?;
+        Some(Posterior {
+            draws: solved.belief?.draws(draws),
+        })
     }
 }

@@ -313,35 +313,12 @@ impl Problem<'_> {
         for a in 0..q {
             model[a * q + a] = model[a * q + a] * (1.0 + lambda) + 1e-12;
         }
-        // Schur complement on the path block: Y = T^-1 B, y = T^-1 r_x.
-        let t = Tridiagonal::factor(&diag, &off)?;
-        let mut y = rhs_x.clone();
-        t.solve(&mut y);
-        let mut cols = vec![0.0; n * q];
-        let mut col = vec![0.0; n];
-        for a in 0..q {
-            for j in 0..n {
-                col[j] = border[j * q + a];
-            }
-            t.solve(&mut col);
-            for j in 0..n {
-                cols[j * q + a] = col[j];
-            }
-        }
-        let mut schur = model.clone();
-        let mut reduced = rhs_p.clone();
-        for a in 0..q {
-            for j in 0..n {
-                let b_ja = border[j * q + a];
-                if b_ja == 0.0 {
-                    continue;
-                }
-                reduced[a] -= b_ja * y[j];
-                for b in 0..q {
-                    schur[a * q + b] -= b_ja * cols[j * q + b];
-                }
-            }
-        }
+        let Reduced {
+            y,
+            cols,
+            mut schur,
+            mut reduced,
+        } = reduce(&diag, &off, &border, model, &rhs_x, rhs_p, q)?;
         let dp = solve_dense(&mut schur, &mut reduced, q)?;
         let mut new_path = path.to_vec();
         for j in 0..n {
@@ -366,6 +343,94 @@ impl Problem<'_> {
             && new.log_tau.is_finite();
         finite.then_some((new_path, new))
     }
+}
+
+impl Problem<'_> {
+    /// The covariance of the model parameters ([`Self::model_params`], in
+    /// their order) at (`path`, `m`): the inverse of the Fisher information
+    /// with the path eliminated (its Schur complement), row-major; `None`
+    /// where it is singular.
+    pub(crate) fn model_covariance(
+        &self,
+        path: &[f64],
+        m: &Models,
+        process_precision: &Precisions,
+    ) -> Option<Vec<f64>> {
+        let q = self.model_params();
+        let ne = self.normal_equations(path, m, process_precision);
+        let rhs_p = vec![0.0; q];
+        let Reduced { schur, .. } =
+            reduce(&ne.diag, &ne.off, &ne.border, ne.model, &ne.rhs_x, rhs_p, q)?;
+        let mut covariance = vec![0.0; q * q];
+        for c in 0..q {
+            let mut unit = vec![0.0; q];
+            unit[c] = 1.0;
+            let column = solve_dense(&mut schur.clone(), &mut unit, q)?;
+            for r in 0..q {
+                covariance[r * q + c] = column[r];
+            }
+        }
+        Some(covariance)
+    }
+}
+
+/// The normal equations with the path eliminated: `y = T^-1 r_x`, the
+/// columns `T^-1 B` (frames x params, row-major), the Schur complement
+/// `D - B' T^-1 B` and its right-hand side `r_p - B' y`.
+struct Reduced {
+    y: Vec<f64>,
+    cols: Vec<f64>,
+    schur: Vec<f64>,
+    reduced: Vec<f64>,
+}
+
+/// Eliminates the tridiagonal path block (`diag`, `off`) from normal
+/// equations bordered by `q` model columns; `None` if it is not positive
+/// definite.
+fn reduce(
+    diag: &[f64],
+    off: &[f64],
+    border: &[f64],
+    model: Vec<f64>,
+    rhs_x: &[f64],
+    rhs_p: Vec<f64>,
+    q: usize,
+) -> Option<Reduced> {
+    let n = diag.len();
+    let t = Tridiagonal::factor(diag, off)?;
+    let mut y = rhs_x.to_vec();
+    t.solve(&mut y);
+    let mut cols = vec![0.0; n * q];
+    let mut col = vec![0.0; n];
+    for a in 0..q {
+        for j in 0..n {
+            col[j] = border[j * q + a];
+        }
+        t.solve(&mut col);
+        for j in 0..n {
+            cols[j * q + a] = col[j];
+        }
+    }
+    let mut schur = model;
+    let mut reduced = rhs_p;
+    for a in 0..q {
+        for j in 0..n {
+            let b_ja = border[j * q + a];
+            if b_ja == 0.0 {
+                continue;
+            }
+            reduced[a] -= b_ja * y[j];
+            for b in 0..q {
+                schur[a * q + b] -= b_ja * cols[j * q + b];
+            }
+        }
+    }
+    Some(Reduced {
+        y,
+        cols,
+        schur,
+        reduced,
+    })
 }
 
 /// Adds `w` times a held block's quadratic form, over the parameters from

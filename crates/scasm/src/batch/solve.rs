@@ -5,6 +5,7 @@ use std::vec;
 use std::vec::Vec;
 
 use crate::MAX_REGRESSORS;
+use crate::batch::belief::Belief;
 use crate::batch::config::BatchMlConfig;
 use crate::batch::frames::{FrameData, Solution, Start};
 use crate::batch::frozen::{Frozen, Held, Normalisation};
@@ -18,11 +19,13 @@ use crate::polynomial::Polynomial;
 const SENSOR_FIT_POINTS: usize = 64;
 
 /// A solve's outcome: the solution, its path and A (to start the next solve
-/// from), and its cost.
+/// from), its cost, and its posterior (if asked for and the Fisher
+/// information is regular).
 pub(crate) struct Solved {
     pub(crate) solution: Solution,
     pub(crate) start: Start,
     pub(crate) cost: f64,
+    pub(crate) belief: Option<Belief>,
 }
 
 impl Solved {
@@ -64,12 +67,14 @@ pub(crate) fn units_map(path: &[f64], previous: &[f64]) -> Option<(f64, f64)> {
 
 /// Solves the fit from `start` over `all_frames`, the first `held` of them
 /// (a windowed solve's frames before its window) with their path held at
-/// `start`'s; `None` if there is too little to solve or the fit fails.
+/// `start`'s, and with `belief` the solution's posterior; `None` if there is
+/// too little to solve or the fit fails.
 pub(crate) fn solve(
     all_frames: &[FrameData],
     config: &BatchMlConfig,
     start: &Start,
     held: usize,
+    belief: bool,
 ) -> Option<Solved> {
     let oc = config.online;
     // Forgetting: frame j of n weighs gamma^(n-1-j); drop the negligible ones.
@@ -212,13 +217,13 @@ pub(crate) fn solve(
         oc.sensor_degree,
         if config.sensor_even { 1.0 } else { gamma },
     );
+    let (lo, hi) = kept_path[..=split]
+        .iter()
+        .chain(path.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+            (lo.min(x), hi.max(x))
+        });
     if config.sensor_even {
-        let (lo, hi) = kept_path[..=split]
-            .iter()
-            .chain(path.iter())
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
-                (lo.min(x), hi.max(x))
-            });
         for k in 0..SENSOR_FIT_POINTS {
             let x = lo + (hi - lo) * k as f64 / (SENSOR_FIT_POINTS - 1) as f64;
             sensor_fit.add(problem.g(&m, x).0, x);
@@ -234,7 +239,12 @@ pub(crate) fn solve(
     let sensor = sensor_fit.polynomial()?;
     // The cost at the process noise of the solved models' own typical speed,
     // which makes it the same whatever the units of the start.
-    let cost = problem.cost(&path, &m, &problem.process_precisions(&m, config));
+    let precision = problem.process_precisions(&m, config);
+    let cost = problem.cost(&path, &m, &precision);
+    let belief = belief
+        .then(|| problem.model_covariance(&path, &m, &precision))
+        .flatten()
+        .and_then(|covariance| Belief::of(&problem, &m, &covariance, (lo, hi)));
     // Dead reckoning carries on from the solved path's end.
     let x_a = *path.last()?;
     let mut full_path = start.path[..window].to_vec();
@@ -251,6 +261,7 @@ pub(crate) fn solve(
             tau_s: libm::exp(m.log_tau),
         },
         cost,
+        belief,
     })
 }
 

@@ -54,10 +54,53 @@ pub struct Aggregate {
     /// The `Ok` trials whose final models are worse than the uncalibrated
     /// start ([`Figures::worse_than_start`]): seed and figures.
     pub worse_than_start: Vec<(u64, Figures)>,
+    /// In how many of the `Ok` trials whose learner predicted its errors
+    /// the measured error fell inside the predicted 90 % band.
+    pub coverage: Coverage,
     /// The `Ok` trials in which the learner, by its check on itself,
     /// reported older models in place of its own for a while
     /// ([`Figures::fallback_s`] above 0).
     pub fell_back: usize,
+}
+
+/// How many of some trials had a property, of those where it is defined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct Share {
+    /// The trials that had it.
+    pub yes: usize,
+    /// The trials where it is defined.
+    pub of: usize,
+}
+
+impl Share {
+    fn of(values: impl Iterator<Item = Option<bool>>) -> Self {
+        values.flatten().fold(Self { yes: 0, of: 0 }, |s, v| Self {
+            yes: s.yes + usize::from(v),
+            of: s.of + 1,
+        })
+    }
+}
+
+impl std::fmt::Display for Share {
+    /// "43 of 50 (86 %)", or "none" of no trials.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.of == 0 {
+            return write!(f, "none");
+        }
+        let percent = 100.0 * self.yes as f64 / self.of as f64;
+        write!(f, "{} of {} ({percent:.0} %)", self.yes, self.of)
+    }
+}
+
+/// The share of trials whose measured error fell inside the learner's
+/// predicted 90 % band, by model ([`Figures::action_in_band`]); about 90 %
+/// if the learner knows how sure it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct Coverage {
+    /// The action model's.
+    pub action: Share,
+    /// The sensor model's.
+    pub sensor: Share,
 }
 
 impl Aggregate {
@@ -101,6 +144,10 @@ impl Aggregate {
                 .filter(|t| t.1.is_ok() && t.2.worse_than_start())
                 .map(|t| (t.0, t.2))
                 .collect(),
+            coverage: Coverage {
+                action: Share::of(ok.iter().map(Figures::action_in_band)),
+                sensor: Share::of(ok.iter().map(Figures::sensor_in_band)),
+            },
             fell_back: trials
                 .iter()
                 .filter(|t| t.1.is_ok() && t.2.fallback_s > 0.0)
@@ -154,6 +201,12 @@ impl Aggregate {
                 "; {} worse than the uncalibrated start (in the means): {}",
                 self.worse_than_start.len(),
                 named.join(", ")
+            ));
+        }
+        if self.coverage.action.of + self.coverage.sensor.of > 0 {
+            s.push_str(&format!(
+                "; measured error inside the learner's predicted 90 % band: action {}, sensor {}",
+                self.coverage.action, self.coverage.sensor
             ));
         }
         if self.counted.fallback_s > 0.0 {
@@ -354,13 +407,56 @@ impl Aggregate {
 mod tests {
     use super::*;
 
+    /// A trial's figures from a learner with no self-check and no posterior.
     fn figures(action: f64) -> Figures {
         Figures {
             action_rmse_mm_s: action,
             action_a0_rmse_mm_s: 100.0,
             fallback_s: f64::NAN,
-            ..Figures::filled(1.0)
+            ..without_bands(Figures::filled(1.0))
         }
+    }
+
+    fn without_bands(f: Figures) -> Figures {
+        Figures {
+            action_predicted_low_mm_s: f64::NAN,
+            action_predicted_high_mm_s: f64::NAN,
+            sensor_predicted_low_mm: f64::NAN,
+            sensor_predicted_high_mm: f64::NAN,
+            ..f
+        }
+    }
+
+    #[test]
+    fn the_bands_coverage_counts_the_ok_trials_with_a_band_and_says_so() {
+        let banded = |action: f64, low: f64, high: f64| Figures {
+            action_predicted_low_mm_s: low,
+            action_predicted_high_mm_s: high,
+            ..figures(action)
+        };
+        let a = Aggregate::of(&[
+            (0, TrialStatus::Ok, banded(10.0, 8.0, 12.0)),
+            (1, TrialStatus::Ok, banded(20.0, 8.0, 12.0)),
+            (2, TrialStatus::Ok, banded(5.0, 8.0, 12.0)),
+            (3, TrialStatus::Ok, banded(12.0, 8.0, 12.0)),
+            (4, TrialStatus::Ok, figures(10.0)),
+            (5, TrialStatus::Fell { at_s: None }, banded(10.0, 8.0, 12.0)),
+        ]);
+        assert_eq!(a.coverage.action, Share { yes: 2, of: 4 });
+        assert_eq!(a.coverage.sensor, Share { yes: 0, of: 0 });
+        assert!(
+            a.describe().ends_with(
+                "measured error inside the learner's predicted 90 % band: action 2 of 4 \
+                 (50 %), sensor none"
+            ),
+            "{}",
+            a.describe()
+        );
+        assert!(
+            !Aggregate::of(&[(6, TrialStatus::Ok, figures(1.0))])
+                .describe()
+                .contains("band")
+        );
     }
 
     #[test]

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::recovery::Recovery;
 use crate::metrics;
+use crate::predicted::Band;
 use crate::reference::{Judgement, Reference};
 use crate::trial::{TraceRow, TrialOutcome};
 
@@ -97,6 +98,27 @@ figures! {
     /// The same on the sensor metric, mm.
     @serde(default = "nan")
     sensor_core_floor_mm,
+    /// The learner's predicted error of its action model: the median over
+    /// its posterior's draws of the metric against each draw as the truth
+    /// (see [`crate::predicted`]), mm/s; NaN, and absent from JSON, for a
+    /// learner that reports no posterior.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    action_predicted_mm_s,
+    /// The low end of its 90 % band (the draws' 5th percentile), mm/s.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    action_predicted_low_mm_s,
+    /// The high end (the 95th percentile), mm/s.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    action_predicted_high_mm_s,
+    /// The learner's predicted error of its sensor model, mm.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    sensor_predicted_mm,
+    /// The low end of its 90 % band, mm.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    sensor_predicted_low_mm,
+    /// The high end, mm.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    sensor_predicted_high_mm,
     /// The reading noise the floor found in the trial's ground truth, px.
     @serde(default = "nan")
     floor_reading_noise_px,
@@ -192,10 +214,21 @@ fn nan() -> f64 {
     f64::NAN
 }
 
+/// Whether `measured` lies in `[low, high]`; `None` if any is NaN.
+fn in_band(measured: f64, low: f64, high: f64) -> Option<bool> {
+    let defined = !(measured.is_nan() || low.is_nan() || high.is_nan());
+    defined.then(|| (low..=high).contains(&measured))
+}
+
 // serde's `skip_serializing_if` passes a reference.
 #[allow(clippy::trivially_copy_pass_by_ref)]
 fn is_nan(v: &f64) -> bool {
     v.is_nan()
+}
+
+/// One end (or the middle) of a predicted error's band, NaN if there is none.
+fn band(b: Option<Band>, get: fn(&Band) -> f64) -> f64 {
+    b.as_ref().map_or(f64::NAN, get)
 }
 
 /// The window over which locations are judged: the last 60 s of a trial.
@@ -277,6 +310,12 @@ impl Figures {
             floor_steady_core_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.steady_core_mm),
             action_core_floor_mm_s: outcome.floor.map_or(f64::NAN, |f| f.action_core_mm_s),
             sensor_core_floor_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_core_mm),
+            action_predicted_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.median),
+            action_predicted_low_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.low),
+            action_predicted_high_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.high),
+            sensor_predicted_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.median),
+            sensor_predicted_low_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.low),
+            sensor_predicted_high_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.high),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
             learner_wall_s: outcome.learner_wall_s,
@@ -292,6 +331,25 @@ impl Figures {
     /// frames (section IV). Such a trial is a result, and stays in the means.
     pub fn worse_than_start(&self) -> bool {
         self.action_worse_than_start() || self.sensor_worse_than_start()
+    }
+
+    /// Whether the measured action error is inside the learner's predicted
+    /// 90 % band; `None` where either is not defined.
+    pub fn action_in_band(&self) -> Option<bool> {
+        in_band(
+            self.action_rmse_mm_s,
+            self.action_predicted_low_mm_s,
+            self.action_predicted_high_mm_s,
+        )
+    }
+
+    /// The same of the sensor model.
+    pub fn sensor_in_band(&self) -> Option<bool> {
+        in_band(
+            self.sensor_rmse_mm,
+            self.sensor_predicted_low_mm,
+            self.sensor_predicted_high_mm,
+        )
     }
 
     /// Whether the learned action model ends worse than A0.

@@ -10,7 +10,7 @@ pub mod quantile;
 pub mod recovery;
 pub mod status;
 
-pub use aggregate::{Aggregate, TrialRow};
+pub use aggregate::{Aggregate, Coverage, Share, TrialRow};
 pub use figures::{Field, Figures, LOCATION_WINDOW_S, best_possible};
 pub use floor_ratios::{FloorRatio, FloorRatios};
 pub use quantile::quantile;
@@ -66,6 +66,7 @@ pub fn summary_json(
         "trials_worse_than_start_action": worse_by_model.0,
         "trials_worse_than_start_sensor": worse_by_model.1,
         "trials_worse_than_start_seeds": aggregate.worse_than_start_json(),
+        "predicted_band_coverage": aggregate.coverage,
         "paper": Figures::paper(),
         "reference": reference,
     });
