@@ -70,34 +70,220 @@ impl Predicted {
         sensor: Option<Polynomial>,
         posterior: &Posterior,
     ) -> Self {
+        Self::of_others(
+            reference,
+            t_s,
+            (action, sensor),
+            (action, sensor),
+            posterior,
+        )
+    }
+
+    /// The predicted errors of `judged` (other models, such as the
+    /// uncalibrated start's, in units of their own) by the learner's
+    /// `posterior`, whose units are those of the learner's own models
+    /// `learned`: the draws' errors are put in the world's units by the
+    /// learned models' scale, whatever the judged models' units.
+    pub fn of_others(
+        reference: &Reference,
+        t_s: f64,
+        learned: (Option<Polynomial>, Option<Polynomial>),
+        judged: (Option<Polynomial>, Option<Polynomial>),
+        posterior: &Posterior,
+    ) -> Self {
         let world = reference.at(t_s);
-        let action = action.and_then(|model| {
+        let action = learned.0.zip(judged.0).and_then(|(units, model)| {
             // Learner's units to mm/s: the scale the metric finds.
-            let to_world = metrics::action_error(&model, &world.action).scale.abs();
-            let errors = posterior.draws.iter().map(|draw| {
-                let truth: Vec<(f64, f64)> = world
-                    .action
-                    .iter()
-                    .map(|&(c, _)| (c, draw.action.eval(c)))
-                    .collect();
-                to_world * metrics::action_error(&model, &truth).rmse
-            });
-            Band::of(errors.collect())
+            let to_world = metrics::action_error(&units, &world.action).scale.abs();
+            Band::of(
+                action_errors(&model, &world.action, posterior)
+                    .map(|e| to_world * e)
+                    .collect(),
+            )
         });
-        let sensor = sensor.and_then(|model| {
-            let to_world = metrics::sensor_error(&model, &world.sensor).scale.abs();
-            let errors = posterior.draws.iter().map(|draw| {
-                let truth: Option<Vec<(f64, f64)>> = world
-                    .sensor
-                    .iter()
-                    .map(|&(_, obs)| metrics::interpolate(&draw.sensor, obs).map(|(x, _)| (x, obs)))
-                    .collect();
-                truth.map_or(f64::NAN, |t| {
-                    to_world * metrics::sensor_error(&model, &t).rmse
-                })
-            });
-            Band::of(errors.collect())
+        let sensor = learned.1.zip(judged.1).and_then(|(units, model)| {
+            let to_world = metrics::sensor_error(&units, &world.sensor).scale.abs();
+            Band::of(
+                sensor_errors(&model, &world.sensor, posterior)
+                    .map(|e| to_world * e)
+                    .collect(),
+            )
         });
         Self { action, sensor }
+    }
+}
+
+/// The share of `posterior`'s draws by which the learned models are nearer
+/// the truth than the start's, by model (`(action, sensor)`; `None` where a
+/// model is missing): the learner's own view of whether calibrating helped.
+pub fn better_than_start(
+    reference: &Reference,
+    t_s: f64,
+    learned: (Option<Polynomial>, Option<Polynomial>),
+    start: (Option<Polynomial>, Option<Polynomial>),
+    posterior: &Posterior,
+) -> (Option<f64>, Option<f64>) {
+    let world = reference.at(t_s);
+    let share = |wins: usize| wins as f64 / posterior.draws.len().max(1) as f64;
+    let action = learned.0.zip(start.0).map(|(l, s)| {
+        let pairs = action_errors(&l, &world.action, posterior).zip(action_errors(
+            &s,
+            &world.action,
+            posterior,
+        ));
+        share(pairs.filter(|(l, s)| l < s).count())
+    });
+    let sensor = learned.1.zip(start.1).map(|(l, s)| {
+        let pairs = sensor_errors(&l, &world.sensor, posterior).zip(sensor_errors(
+            &s,
+            &world.sensor,
+            posterior,
+        ));
+        share(pairs.filter(|(l, s)| l < s).count())
+    });
+    (action, sensor)
+}
+
+/// The action metric of `model` against each draw, at `judged`'s commands,
+/// in the draws' units.
+fn action_errors<'a>(
+    model: &'a Polynomial,
+    judged: &'a [(f64, f64)],
+    posterior: &'a Posterior,
+) -> impl Iterator<Item = f64> + 'a {
+    posterior.draws.iter().map(move |draw| {
+        let truth: Vec<(f64, f64)> = judged
+            .iter()
+            .map(|&(c, _)| (c, draw.action.eval(c)))
+            .collect();
+        metrics::action_error(model, &truth).rmse
+    })
+}
+
+/// The sensor metric of `model` against each draw, at `judged`'s readings,
+/// in the draws' units (NaN where a draw has no table).
+fn sensor_errors<'a>(
+    model: &'a Polynomial,
+    judged: &'a [(f64, f64)],
+    posterior: &'a Posterior,
+) -> impl Iterator<Item = f64> + 'a {
+    posterior.draws.iter().map(move |draw| {
+        let truth: Option<Vec<(f64, f64)>> = judged
+            .iter()
+            .map(|&(_, obs)| metrics::interpolate(&draw.sensor, obs).map(|(x, _)| (x, obs)))
+            .collect();
+        truth.map_or(f64::NAN, |t| metrics::sensor_error(model, &t).rmse)
+    })
+}
+
+/// What a learner's posterior says at the end of a trial: its predicted
+/// errors, the start's by the same draws, and how likely it is that each
+/// learned model is nearer the truth than the start's.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Prediction {
+    /// The learned models' predicted errors.
+    pub learned: Predicted,
+    /// The uncalibrated start's (A0 and the section IV sensor model), by the
+    /// learner's draws, if the start rode along.
+    pub start: Option<Predicted>,
+    /// The share of draws by which each learned model (`(action, sensor)`)
+    /// is nearer the truth than the start's.
+    pub better_than_start: (Option<f64>, Option<f64>),
+}
+
+impl Prediction {
+    /// From the learner's `posterior` at `t_s`: its models `learned`, and the
+    /// start's `start` if it rode along.
+    pub fn of(
+        reference: &Reference,
+        t_s: f64,
+        learned: (Option<Polynomial>, Option<Polynomial>),
+        start: Option<(Option<Polynomial>, Option<Polynomial>)>,
+        posterior: &Posterior,
+    ) -> Self {
+        Self {
+            learned: Predicted::of(reference, t_s, learned.0, learned.1, posterior),
+            start: start.map(|s| Predicted::of_others(reference, t_s, learned, s, posterior)),
+            better_than_start: start.map_or((None, None), |s| {
+                better_than_start(reference, t_s, learned, s, posterior)
+            }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use scasm::Draw;
+
+    use super::*;
+
+    fn truth_velocity(c: f64) -> f64 {
+        0.8 * c + 4e-4 * c * c
+    }
+
+    /// A world with the pinhole camera `obs = 38400 / d`, and a posterior
+    /// whose every draw is that truth (in the world's units).
+    fn world() -> (Reference, Posterior) {
+        let reference = Reference {
+            action: (-15..=15)
+                .map(|k| 20.0 * f64::from(k))
+                .map(|c| (c, truth_velocity(c)))
+                .collect(),
+            sensor: (0..13)
+                .map(|k| 1200.0 + 200.0 * f64::from(k))
+                .map(|d| (d, 38_400.0 / d))
+                .collect(),
+            changes: Vec::new(),
+        };
+        let mut sensor: Vec<(f64, f64)> = (0..=280)
+            .map(|k| 1000.0 + 10.0 * f64::from(k))
+            .map(|x| (38_400.0 / x, x))
+            .collect();
+        sensor.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let draw = Draw {
+            action: Polynomial::new(&[0.0, 0.8, 4e-4]).expect("finite"),
+            sensor,
+        };
+        (
+            reference,
+            Posterior {
+                draws: vec![draw; 20],
+            },
+        )
+    }
+
+    #[test]
+    fn the_start_is_judged_by_the_learners_draws_and_the_learned_models_found_better() {
+        let (reference, posterior) = world();
+        let readings: Vec<(f64, f64)> = reference.sensor.iter().map(|&(d, o)| (o, d)).collect();
+        let learned = (
+            Polynomial::new(&[0.0, 0.8, 4e-4]),
+            metrics::best_polynomial(&readings, 3),
+        );
+        let start = (
+            Some(Polynomial::identity()),
+            metrics::best_polynomial(&readings, 1),
+        );
+        let p = Prediction::of(&reference, 150.0, learned, Some(start), &posterior);
+        // The draws are the truth, so the predicted errors are the measured ones.
+        let a = p.learned.action.expect("a band");
+        assert!(a.median.abs() < 1e-9 && a.high.abs() < 1e-9);
+        let s = p.learned.sensor.expect("a band");
+        let measured = metrics::sensor_error(&learned.1.expect("cubic"), &reference.sensor).rmse;
+        assert!(
+            (s.median - measured).abs() < 0.05 * measured,
+            "{s:?} against {measured}"
+        );
+        let start_predicted = p.start.expect("the start rode along");
+        let a0 = metrics::action_error(&Polynomial::identity(), &reference.action).rmse;
+        let a0_predicted = start_predicted.action.expect("a band").median;
+        assert!(
+            (a0_predicted - a0).abs() < 1e-6 * a0,
+            "{a0_predicted} against {a0}"
+        );
+        assert_eq!(p.better_than_start, (Some(1.0), Some(1.0)));
+        // Judged the other way round, the start is never the better.
+        let swapped = better_than_start(&reference, 150.0, start, learned, &posterior);
+        assert_eq!(swapped, (Some(0.0), Some(0.0)));
     }
 }

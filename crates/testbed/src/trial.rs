@@ -13,7 +13,7 @@ use crate::behaviour::{Behaviour, BehaviourConfig};
 pub use crate::blanks::Blanks;
 use crate::floor::{Floor, Sample};
 use crate::localiser::{Following, Learned, Localiser, LocaliserConfig, Tabulated};
-use crate::predicted::{DRAWS, Predicted};
+use crate::predicted::{DRAWS, Prediction};
 use crate::reference::{Judgement, Reference};
 use crate::seeds::{self, Stream};
 pub use crate::world::{FrameRecord, Truth};
@@ -387,8 +387,9 @@ pub struct TrialOutcome {
     /// IV), if it rode along (see [`Comparators::a0_baseline`]).
     pub start: Option<Judgement>,
     /// The learner's predicted errors of its final models, from its
-    /// posterior, if it reports one (see [`Predicted`]).
-    pub predicted: Option<Predicted>,
+    /// posterior, the start's by the same, if it reports one (see
+    /// [`Prediction`]).
+    pub predicted: Option<Prediction>,
     /// When the robot was first seen tipped over, s, if it was.
     pub fell_at_s: Option<f64>,
     /// When the physics blew up, s, if it did.
@@ -549,12 +550,13 @@ pub fn learn(
     let started = std::time::Instant::now();
     let posterior = learner.posterior(DRAWS);
     learner_wall += started.elapsed();
+    let start = a0_baseline.map(|b| reference.judge(end_s, b));
     let predicted = posterior.map(|p| {
-        Predicted::of(
+        Prediction::of(
             reference,
             end_s,
-            learner.action_model(),
-            learner.sensor_model(),
+            (learner.action_model(), learner.sensor_model()),
+            start.map(|s| (s.action_model, s.sensor_model)),
             &p,
         )
     });
@@ -563,7 +565,7 @@ pub fn learn(
         floor,
         seed: recording.seed,
         last: reference.judge(end_s, learner),
-        start: a0_baseline.map(|b| reference.judge(end_s, b)),
+        start,
         trace,
         over_time,
         action_model: learner.action_model(),

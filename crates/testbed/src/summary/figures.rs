@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::recovery::Recovery;
 use crate::metrics;
-use crate::predicted::Band;
+use crate::predicted::{Band, Predicted};
 use crate::reference::{Judgement, Reference};
 use crate::trial::{TraceRow, TrialOutcome};
 
@@ -110,6 +110,14 @@ figures! {
     /// The high end (the 95th percentile), mm/s.
     @serde(default = "nan", skip_serializing_if = "is_nan")
     action_predicted_high_mm_s,
+    /// The uncalibrated start's action model (A0) judged by the same draws:
+    /// the learner's predicted error of its start, mm/s (the median draw's).
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    action_start_predicted_mm_s,
+    /// The share of the learner's draws by which its action model is nearer
+    /// the truth than A0: its own view of whether calibrating helped (0 to 1).
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    action_better_than_start_share,
     /// The learner's predicted error of its sensor model, mm.
     @serde(default = "nan", skip_serializing_if = "is_nan")
     sensor_predicted_mm,
@@ -119,6 +127,14 @@ figures! {
     /// The high end, mm.
     @serde(default = "nan", skip_serializing_if = "is_nan")
     sensor_predicted_high_mm,
+    /// The start's sensor model (section IV's, from A0) judged by the same
+    /// draws, mm.
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    sensor_start_predicted_mm,
+    /// The share of the draws by which the sensor model is nearer the truth
+    /// than the start's (0 to 1).
+    @serde(default = "nan", skip_serializing_if = "is_nan")
+    sensor_better_than_start_share,
     /// The reading noise the floor found in the trial's ground truth, px.
     @serde(default = "nan")
     floor_reading_noise_px,
@@ -289,6 +305,15 @@ impl Figures {
     /// The figures of a finished trial (NaN where a model was never learned).
     pub fn of(outcome: &TrialOutcome, best: (f64, f64, f64)) -> Self {
         let start = outcome.start.as_ref().and_then(|j| j.sensor_rmse_mm);
+        let none = Predicted {
+            action: None,
+            sensor: None,
+        };
+        let p = outcome.predicted.as_ref();
+        let learned = p.map_or(none, |p| p.learned);
+        let (start_predicted, better) = p.map_or((none, (None, None)), |p| {
+            (p.start.unwrap_or(none), p.better_than_start)
+        });
         Self {
             action_rmse_mm_s: outcome.last.action_rmse_mm_s.unwrap_or(f64::NAN),
             sensor_rmse_mm: outcome.last.sensor_rmse_mm.unwrap_or(f64::NAN),
@@ -310,12 +335,16 @@ impl Figures {
             floor_steady_core_noise_mm: outcome.floor.map_or(f64::NAN, |f| f.noise.steady_core_mm),
             action_core_floor_mm_s: outcome.floor.map_or(f64::NAN, |f| f.action_core_mm_s),
             sensor_core_floor_mm: outcome.floor.map_or(f64::NAN, |f| f.sensor_core_mm),
-            action_predicted_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.median),
-            action_predicted_low_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.low),
-            action_predicted_high_mm_s: band(outcome.predicted.and_then(|p| p.action), |b| b.high),
-            sensor_predicted_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.median),
-            sensor_predicted_low_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.low),
-            sensor_predicted_high_mm: band(outcome.predicted.and_then(|p| p.sensor), |b| b.high),
+            action_predicted_mm_s: band(learned.action, |b| b.median),
+            action_predicted_low_mm_s: band(learned.action, |b| b.low),
+            action_predicted_high_mm_s: band(learned.action, |b| b.high),
+            sensor_predicted_mm: band(learned.sensor, |b| b.median),
+            sensor_predicted_low_mm: band(learned.sensor, |b| b.low),
+            sensor_predicted_high_mm: band(learned.sensor, |b| b.high),
+            action_start_predicted_mm_s: band(start_predicted.action, |b| b.median),
+            sensor_start_predicted_mm: band(start_predicted.sensor, |b| b.median),
+            action_better_than_start_share: better.0.unwrap_or(f64::NAN),
+            sensor_better_than_start_share: better.1.unwrap_or(f64::NAN),
             consistency: outcome.last.consistency.unwrap_or(f64::NAN),
             realtime_factor: outcome.realtime_factor,
             learner_wall_s: outcome.learner_wall_s,
