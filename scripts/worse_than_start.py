@@ -13,7 +13,11 @@ ROBOT is a shipped robot's name or a robot file's or URDF's path (default:
 all sixteen; the public ones need `bash scripts/public_robots.sh` first,
 which downloads them into target/public-robots). A robot whose run is
 already in OUT (its summary.json, for the same seeds and learner) is not
-run again. Writes OUT/worse_than_start.csv (a row per robot) and
+run again. Beside the trials worse than their start, each robot's row has
+the learned errors over the information floor, the share of trials inside the
+learner's predicted bands, how far off its line the robot went, and how much
+of the test range its walk left out at each end. Writes
+OUT/worse_than_start.csv (a row per robot) and
 OUT/worse_than_start.md (the same table, and the total), and prints the table.
 """
 import argparse
@@ -46,7 +50,7 @@ PUBLIC_URDFS = [
 FIELDS = ["robot", "trials", "ok", "worse", "worse_action", "worse_sensor",
           "action_a0_mm_s", "action_mm_s", "sensor_start_mm", "sensor_mm",
           "learned_over_floor", "start_within_floor_goal", "in_band_action", "in_band_sensor",
-          "off_line_max_m", "seeds_worse"]
+          "off_line_max_m", "range_short_pct", "seeds_worse"]
 
 # Issue 58's goal for the learner: within this factor of the information floor.
 FLOOR_GOAL = 1.10
@@ -103,7 +107,7 @@ def run(robot, args, out):
     return json.loads(summary.read_text())
 
 
-def row(robot, data):
+def row(robot, data, out):
     if "error" in data:
         return {"robot": robot, "trials": 0, "ok": 0, "worse": "", "worse_action": "",
                 "worse_sensor": "", "action_a0_mm_s": "", "action_mm_s": "",
@@ -129,6 +133,7 @@ def row(robot, data):
         "in_band_action": in_band(data, "action"),
         "in_band_sensor": in_band(data, "sensor"),
         "off_line_max_m": off_line(data),
+        "range_short_pct": range_short(out),
         "seeds_worse": " ".join(str(s["seed"]) for s in data["trials_worse_than_start_seeds"]),
     }
 
@@ -181,6 +186,28 @@ def off_line(data):
     return f"{max(far) / 1000:.2f}" if far else ""
 
 
+def range_short(out):
+    """How far the walk fell short of the test range, as a share of that
+    range: the largest over the trials of how much nearer than the walk's
+    nearest point the nearest test distance is, and the same at the far end
+    ("near %, far %"; 0 where every trial covered it). From each trial's
+    trace.csv (the true distance) and dataset.json (the reference's
+    distances)."""
+    near, far, span = 0.0, 0.0, 0.0
+    for trial in sorted(out.glob("trial-*")):
+        try:
+            sensor = json.loads((trial / "dataset.json").read_text())["reference"]["sensor"]
+            with open(trial / "trace.csv", newline="") as f:
+                walked = [float(r["x_true_mm"]) for r in csv.DictReader(f)]
+        except (OSError, KeyError, ValueError):
+            return ""
+        distances = [s["distance_mm"] for s in sensor]
+        near = max(near, min(walked) - min(distances))
+        far = max(far, max(distances) - max(walked))
+        span = max(distances) - min(distances)
+    return f"{100 * near / span:.1f}, {100 * far / span:.1f}" if span > 0 else ""
+
+
 def band_cell(r):
     """The band columns as one table cell: "4/5, 5/5", or "-"."""
     return f"{r['in_band_action']}, {r['in_band_sensor']}" if r["in_band_action"] else "-"
@@ -201,7 +228,7 @@ def main():
     chosen = robots(args.robots)
     for i, (robot, name) in enumerate(zip(chosen, labels(chosen)), 1):
         print(f"[{i}/{len(chosen)}] {name} ...", flush=True)
-        rows.append(row(name, run(robot, args, out / name)))
+        rows.append(row(name, run(robot, args, out / name), out / name))
         r = rows[-1]
         print(f"    {r['ok']} of {r['trials']} ok, {r['worse']} worse "
               f"({r['worse_action']} by the action model, {r['worse_sensor']} by the sensor)"
@@ -224,8 +251,9 @@ def main():
         "| robot | trials ok | worse than start (action, sensor) | A0's action error, mm/s | "
         "learned, mm/s | start's sensor error, mm | learned, mm | learned / floor, median "
         "(action, sensor) | start within 1.10x of its floor | inside the predicted 90 % band "
-        "(action, sensor) | most off its line, m | seeds worse |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "(action, sensor) | most off its line, m | test range not walked, % (near, far) | "
+        "seeds worse |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         if r["trials"]:
@@ -233,9 +261,10 @@ def main():
                          f"({r['worse_action']}, {r['worse_sensor']}) | {r['action_a0_mm_s']} | "
                          f"{r['action_mm_s']} | {r['sensor_start_mm']} | {r['sensor_mm']} | "
                          f"{r['learned_over_floor']} | {r['start_within_floor_goal']} | "
-                         f"{band_cell(r)} | {r['off_line_max_m']} | {r['seeds_worse']} |")
+                         f"{band_cell(r)} | {r['off_line_max_m']} | {r['range_short_pct']} | "
+                         f"{r['seeds_worse']} |")
         else:
-            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | | | | | |")
+            lines.append(f"| {r['robot']} | failed: {r['seeds_worse']} | | | | | | | | | | | |")
     rate = f"{worse / ok:.1%}" if ok else "-"
     lines += ["", f"In all: {worse} of {ok} ok trials worse than their start ({rate}; "
               f"{by_a} by the action model, {by_s} by the sensor model; a trial may be both); "
@@ -246,6 +275,10 @@ def main():
               f"worse than its start in these alone): {near} of {ok}.",
               "", f"Off their line by more than 0.1 m in some trial (issue 58 asks within 0.1 m): "
               f"{len(off)} of {len(rows)} robots" + (f" ({', '.join(off)})." if off else ".")]
+    short = [r["robot"] for r in rows if r["range_short_pct"]
+             and any(float(x) > 1.0 for x in r["range_short_pct"].split(", "))]
+    lines += ["", f"Robots whose walk missed more than 1 % of the test range at either end in "
+              f"some trial (the sensor model extrapolates there): {len(short)} of {len(rows)}."]
     (a_in, a_of), (s_in, s_of) = share_sum(rows, "in_band_action"), share_sum(rows, "in_band_sensor")
     if a_of or s_of:
         lines += ["", f"Measured error inside the learner's predicted 90 % band: action {a_in} "
