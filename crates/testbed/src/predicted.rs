@@ -70,110 +70,97 @@ impl Predicted {
         sensor: Option<Polynomial>,
         posterior: &Posterior,
     ) -> Self {
-        Self::of_others(
-            reference,
-            t_s,
-            (action, sensor),
-            (action, sensor),
-            posterior,
-        )
+        Prediction::of(reference, t_s, (action, sensor), None, posterior).learned
+    }
+}
+
+/// Which of the two models is judged.
+#[derive(Debug, Clone, Copy)]
+enum Model {
+    Action,
+    Sensor,
+}
+
+impl Model {
+    /// The measured points this model is judged at.
+    fn judged(self, world: &Reference) -> &[(f64, f64)] {
+        match self {
+            Self::Action => &world.action,
+            Self::Sensor => &world.sensor,
+        }
     }
 
-    /// The predicted errors of `judged` (other models, such as the
-    /// uncalibrated start's, in units of their own) by the learner's
-    /// `posterior`, whose units are those of the learner's own models
-    /// `learned`: the draws' errors are put in the world's units by the
-    /// learned models' scale, whatever the judged models' units.
-    pub fn of_others(
-        reference: &Reference,
-        t_s: f64,
-        learned: (Option<Polynomial>, Option<Polynomial>),
-        judged: (Option<Polynomial>, Option<Polynomial>),
+    /// The metric's error of `model` against the measured points, and the
+    /// scale it finds (the learner's units to the world's).
+    fn error(self, model: &Polynomial, judged: &[(f64, f64)]) -> (f64, f64) {
+        match self {
+            Self::Action => {
+                let e = metrics::action_error(model, judged);
+                (e.rmse, e.scale)
+            }
+            Self::Sensor => {
+                let e = metrics::sensor_error(model, judged);
+                (e.rmse, e.scale)
+            }
+        }
+    }
+
+    /// The truth `draw` stands for at `judged`'s commands or readings, in
+    /// the draw's units (`None` where a sensor draw has no table there).
+    fn truth(self, draw: &scasm::Draw, judged: &[(f64, f64)]) -> Option<Vec<(f64, f64)>> {
+        match self {
+            Self::Action => Some(
+                judged
+                    .iter()
+                    .map(|&(c, _)| (c, draw.action.eval(c)))
+                    .collect(),
+            ),
+            Self::Sensor => judged
+                .iter()
+                .map(|&(_, obs)| metrics::interpolate(&draw.sensor, obs).map(|(x, _)| (x, obs)))
+                .collect(),
+        }
+    }
+
+    /// One model judged by every draw: the learned model's band, the start's
+    /// (if given) and the share of draws by which the learned one is nearer
+    /// the truth. Each draw's errors are in the draws' units and put in the
+    /// world's by the scale the metric finds for the learned model.
+    fn judge(
+        self,
+        world: &Reference,
+        learned: Option<Polynomial>,
+        start: Option<Option<Polynomial>>,
         posterior: &Posterior,
-    ) -> Self {
-        let world = reference.at(t_s);
-        let action = learned.0.zip(judged.0).and_then(|(units, model)| {
-            // Learner's units to mm/s: the scale the metric finds.
-            let to_world = metrics::action_error(&units, &world.action).scale.abs();
-            Band::of(
-                action_errors(&model, &world.action, posterior)
-                    .map(|e| to_world * e)
-                    .collect(),
-            )
-        });
-        let sensor = learned.1.zip(judged.1).and_then(|(units, model)| {
-            let to_world = metrics::sensor_error(&units, &world.sensor).scale.abs();
-            Band::of(
-                sensor_errors(&model, &world.sensor, posterior)
-                    .map(|e| to_world * e)
-                    .collect(),
-            )
-        });
-        Self { action, sensor }
+    ) -> (Option<Band>, Option<Band>, Option<f64>) {
+        let Some(learned) = learned else {
+            return (None, None, None);
+        };
+        let judged = self.judged(world);
+        let to_world = self.error(&learned, judged).1.abs();
+        let start = start.flatten();
+        // Per draw: the learned model's error and the start's (NaN where the
+        // draw has no truth to judge by).
+        let pairs: Vec<(f64, f64)> = posterior
+            .draws
+            .iter()
+            .map(|draw| match self.truth(draw, judged) {
+                Some(truth) => (
+                    to_world * self.error(&learned, &truth).0,
+                    start.map_or(f64::NAN, |s| to_world * self.error(&s, &truth).0),
+                ),
+                None => (f64::NAN, f64::NAN),
+            })
+            .collect();
+        let band = Band::of(pairs.iter().map(|p| p.0).collect());
+        let Some(_) = start else {
+            return (band, None, None);
+        };
+        let start_band = Band::of(pairs.iter().map(|p| p.1).collect());
+        let wins = pairs.iter().filter(|(l, s)| l < s).count();
+        let share = wins as f64 / posterior.draws.len().max(1) as f64;
+        (band, start_band, Some(share))
     }
-}
-
-/// The share of `posterior`'s draws by which the learned models are nearer
-/// the truth than the start's, by model (`(action, sensor)`; `None` where a
-/// model is missing): the learner's own view of whether calibrating helped.
-pub fn better_than_start(
-    reference: &Reference,
-    t_s: f64,
-    learned: (Option<Polynomial>, Option<Polynomial>),
-    start: (Option<Polynomial>, Option<Polynomial>),
-    posterior: &Posterior,
-) -> (Option<f64>, Option<f64>) {
-    let world = reference.at(t_s);
-    let share = |wins: usize| wins as f64 / posterior.draws.len().max(1) as f64;
-    let action = learned.0.zip(start.0).map(|(l, s)| {
-        let pairs = action_errors(&l, &world.action, posterior).zip(action_errors(
-            &s,
-            &world.action,
-            posterior,
-        ));
-        share(pairs.filter(|(l, s)| l < s).count())
-    });
-    let sensor = learned.1.zip(start.1).map(|(l, s)| {
-        let pairs = sensor_errors(&l, &world.sensor, posterior).zip(sensor_errors(
-            &s,
-            &world.sensor,
-            posterior,
-        ));
-        share(pairs.filter(|(l, s)| l < s).count())
-    });
-    (action, sensor)
-}
-
-/// The action metric of `model` against each draw, at `judged`'s commands,
-/// in the draws' units.
-fn action_errors<'a>(
-    model: &'a Polynomial,
-    judged: &'a [(f64, f64)],
-    posterior: &'a Posterior,
-) -> impl Iterator<Item = f64> + 'a {
-    posterior.draws.iter().map(move |draw| {
-        let truth: Vec<(f64, f64)> = judged
-            .iter()
-            .map(|&(c, _)| (c, draw.action.eval(c)))
-            .collect();
-        metrics::action_error(model, &truth).rmse
-    })
-}
-
-/// The sensor metric of `model` against each draw, at `judged`'s readings,
-/// in the draws' units (NaN where a draw has no table).
-fn sensor_errors<'a>(
-    model: &'a Polynomial,
-    judged: &'a [(f64, f64)],
-    posterior: &'a Posterior,
-) -> impl Iterator<Item = f64> + 'a {
-    posterior.draws.iter().map(move |draw| {
-        let truth: Option<Vec<(f64, f64)>> = judged
-            .iter()
-            .map(|&(_, obs)| metrics::interpolate(&draw.sensor, obs).map(|(x, _)| (x, obs)))
-            .collect();
-        truth.map_or(f64::NAN, |t| metrics::sensor_error(model, &t).rmse)
-    })
 }
 
 /// What a learner's posterior says at the end of a trial: its predicted
@@ -193,7 +180,9 @@ pub struct Prediction {
 
 impl Prediction {
     /// From the learner's `posterior` at `t_s`: its models `learned`, and the
-    /// start's `start` if it rode along.
+    /// start's `start` if it rode along. The start's errors are put in the
+    /// world's units by the learned models' scale, whatever the start's
+    /// own units (the draws are in the learner's).
     pub fn of(
         reference: &Reference,
         t_s: f64,
@@ -201,12 +190,18 @@ impl Prediction {
         start: Option<(Option<Polynomial>, Option<Polynomial>)>,
         posterior: &Posterior,
     ) -> Self {
+        let world = reference.at(t_s);
+        let (action, action_start, action_share) =
+            Model::Action.judge(world, learned.0, start.map(|s| s.0), posterior);
+        let (sensor, sensor_start, sensor_share) =
+            Model::Sensor.judge(world, learned.1, start.map(|s| s.1), posterior);
         Self {
-            learned: Predicted::of(reference, t_s, learned.0, learned.1, posterior),
-            start: start.map(|s| Predicted::of_others(reference, t_s, learned, s, posterior)),
-            better_than_start: start.map_or((None, None), |s| {
-                better_than_start(reference, t_s, learned, s, posterior)
+            learned: Predicted { action, sensor },
+            start: start.map(|_| Predicted {
+                action: action_start,
+                sensor: sensor_start,
             }),
+            better_than_start: (action_share, sensor_share),
         }
     }
 }
@@ -283,7 +278,7 @@ mod tests {
         );
         assert_eq!(p.better_than_start, (Some(1.0), Some(1.0)));
         // Judged the other way round, the start is never the better.
-        let swapped = better_than_start(&reference, 150.0, start, learned, &posterior);
-        assert_eq!(swapped, (Some(0.0), Some(0.0)));
+        let swapped = Prediction::of(&reference, 150.0, start, Some(learned), &posterior);
+        assert_eq!(swapped.better_than_start, (Some(0.0), Some(0.0)));
     }
 }
