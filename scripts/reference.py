@@ -116,13 +116,17 @@ COLUMNS = {
     },
     "leaderboard.csv": {
         "learner": "the learner's name", "scenario": "the suite's scenario", "seed": "the trial's seed",
-        "worse_than_start": "1 if the trial ended worse than its uncalibrated start",
+        "worse_than_start": "true if the trial ended worse than its uncalibrated start",
+        "worse_than_start_action": "true if its action model ended worse than A0",
+        "worse_than_start_sensor": "true if its sensor model ended worse than the start's",
         "status": "ok, or why the trial failed",
     },
     "sweep.csv": {"seed": "the trial's seed", "status": "ok, or why the trial failed"},
     "sweep_summary.csv": {
         "runs_ok": "trials ok", "runs_failed": "trials failed",
         "runs_worse_than_start": "ok trials that ended worse than their start",
+        "runs_worse_than_start_action": "of those, the trials whose action model ended worse than A0",
+        "runs_worse_than_start_sensor": "of those, the trials whose sensor model ended worse than the start's",
     },
 }
 STATS = ("mean", "std", "median", "p10", "p90", "n")

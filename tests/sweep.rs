@@ -139,7 +139,7 @@ fn a_resumed_sweep_skips_what_is_done_and_reads_back_exactly() {
     let summary = std::fs::read_to_string(dir.join("sweep_summary.csv")).expect("summary");
     assert!(
         summary
-            .starts_with("learner.gamma,learner.t_start,runs_ok,runs_failed,runs_worse_than_start,action_rmse_mm_s_mean,action_rmse_mm_s_std,action_rmse_mm_s_median,action_rmse_mm_s_p10,action_rmse_mm_s_p90,action_rmse_mm_s_n,")
+            .starts_with("learner.gamma,learner.t_start,runs_ok,runs_failed,runs_worse_than_start,runs_worse_than_start_action,runs_worse_than_start_sensor,action_rmse_mm_s_mean,action_rmse_mm_s_std,action_rmse_mm_s_median,action_rmse_mm_s_p10,action_rmse_mm_s_p90,action_rmse_mm_s_n,")
     );
 }
 

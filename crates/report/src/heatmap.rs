@@ -304,6 +304,7 @@ mod tests {
                         runs_ok: usize::from(!(g == "0.99" && b == "0.1")),
                         runs_failed: usize::from(g == "0.99" && b == "0.1"),
                         runs_worse_than_start: 0,
+                        runs_worse_than_start_by_model: (0, 0),
                         mean,
                         std: Figures::filled(0.0),
                         quantiles: [mean; 3],

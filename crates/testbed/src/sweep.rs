@@ -258,6 +258,9 @@ pub struct CombinationSummary {
     /// Runs that finished `ok` with final models worse than their start
     /// ([`Figures::worse_than_start`]): in the means.
     pub runs_worse_than_start: usize,
+    /// Of those, how many by their action model and how many by their
+    /// sensor model (a run may be both).
+    pub runs_worse_than_start_by_model: (usize, usize),
     /// Mean over the `ok` runs (NaN if none).
     pub mean: Figures,
     /// Standard deviation over them (NaN if none).
@@ -436,6 +439,7 @@ impl Results {
                     runs_ok: a.ok(),
                     runs_failed: a.failed.len(),
                     runs_worse_than_start: a.worse_than_start.len(),
+                    runs_worse_than_start_by_model: a.worse_by_model(),
                     mean: a.mean,
                     std: a.std,
                     quantiles: [a.median, a.p10, a.p90],
@@ -455,6 +459,8 @@ impl Results {
         h.push("runs_ok".into());
         h.push("runs_failed".into());
         h.push("runs_worse_than_start".into());
+        h.push("runs_worse_than_start_action".into());
+        h.push("runs_worse_than_start_sensor".into());
         for m in Figures::FIELDS {
             for stat in SUMMARY_STATISTICS {
                 h.push(format!("{}_{stat}", m.name));
@@ -468,6 +474,8 @@ impl Results {
                 cells.push(g.runs_ok.to_string());
                 cells.push(g.runs_failed.to_string());
                 cells.push(g.runs_worse_than_start.to_string());
+                cells.push(g.runs_worse_than_start_by_model.0.to_string());
+                cells.push(g.runs_worse_than_start_by_model.1.to_string());
                 let [median, p10, p90] = &g.quantiles;
                 for field in Figures::FIELDS {
                     for f in [&g.mean, &g.std, median, p10, p90, &g.counted] {

@@ -23,13 +23,14 @@ pub struct Entry {
 }
 
 /// `leaderboard.csv`: one row per entry: learner, scenario, seed, every
-/// figure ([`Figures::FIELDS`]), whether it ended worse than its start, and
-/// its status.
+/// figure ([`Figures::FIELDS`]), whether it ended worse than its start in
+/// all and by model ([`Figures::WORSE_THAN_START`]), and its status.
 pub fn write_leaderboard_csv(path: &Path, entries: &[Entry]) -> std::io::Result<()> {
     let header = ["learner", "scenario", "seed"]
         .into_iter()
         .chain(Figures::FIELDS.iter().map(|f| f.name))
-        .chain(["worse_than_start", "status"]);
+        .chain(Figures::WORSE_THAN_START.iter().map(|w| w.0))
+        .chain(["status"]);
     output::write_csv(
         path,
         header,
@@ -40,7 +41,11 @@ pub fn write_leaderboard_csv(path: &Path, entries: &[Entry]) -> std::io::Result<
                     .iter()
                     .map(|f| (f.get)(&e.figures).to_string()),
             );
-            cells.push((e.status.is_ok() && e.figures.worse_than_start()).to_string());
+            cells.extend(
+                Figures::WORSE_THAN_START
+                    .iter()
+                    .map(|w| (e.status.is_ok() && (w.1)(&e.figures)).to_string()),
+            );
             cells.push(e.status.to_string());
             cells
         }),
@@ -60,6 +65,8 @@ pub struct LeaderboardError {
 /// Reads back what [`write_leaderboard_csv`] wrote: figures by column name (a
 /// figure the file lacks is NaN; a column this version does not know, a
 /// truncated line or a bad number is an error naming the file and line).
+/// The worse-than-start columns before the status are derived from the
+/// figures and not read; a file from before the by-model ones reads too.
 pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError> {
     let error = |reason: String| LeaderboardError {
         path: path.display().to_string(),
@@ -74,16 +81,24 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
     })?;
     let head: Vec<&str> = table.header.iter().map(String::as_str).collect();
     let n = head.len();
+    // The figures end where the derived columns, then the status, begin.
+    let derived = head[..n.saturating_sub(1)]
+        .iter()
+        .rev()
+        .take_while(|c| Figures::WORSE_THAN_START.iter().any(|w| w.0 == **c))
+        .count();
+    let end = n.saturating_sub(1 + derived);
     if n < 6
         || head[..3] != ["learner", "scenario", "seed"]
-        || head[n - 2..] != ["worse_than_start", "status"]
+        || head[n - 1] != "status"
+        || head.get(end) != Some(&"worse_than_start")
     {
         return Err(error(format!(
             "columns `{}` are not a leaderboard's",
             head.join(",")
         )));
     }
-    let fields: Vec<&'static crate::summary::Field> = head[3..n - 2]
+    let fields: Vec<&'static crate::summary::Field> = head[3..end]
         .iter()
         .map(|c| {
             Figures::field(c)
@@ -94,7 +109,7 @@ pub fn read_leaderboard_csv(path: &Path) -> Result<Vec<Entry>, LeaderboardError>
     for (line, cells) in &table.rows {
         let bad = |reason: String| error(format!("line {line}: {reason}"));
         let mut figures = Figures::filled(f64::NAN);
-        for (field, cell) in fields.iter().zip(&cells[3..n - 2]) {
+        for (field, cell) in fields.iter().zip(&cells[3..end]) {
             *(field.get_mut)(&mut figures) = cell
                 .parse()
                 .map_err(|_| bad(format!("`{cell}` in column {} is not a number", field.name)))?;
@@ -368,6 +383,40 @@ mod tests {
         assert_eq!(back.len(), 3);
         assert_eq!(back[1].status, status);
         assert_eq!(back[2].seed, 3);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn worse_than_start_is_written_by_model_and_an_older_file_still_reads() {
+        let dir = std::env::temp_dir().join(format!("leaderboard-worse-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("leaderboard.csv");
+        // Worse by the sensor model only.
+        let mut e = entry("scasm", 4, 10.0);
+        e.figures.action_a0_rmse_mm_s = 20.0;
+        e.figures.sensor_rmse_mm = 90.0;
+        e.figures.sensor_start_rmse_mm = 80.0;
+        write_leaderboard_csv(&path, &[e]).expect("write");
+        let table = output::read_csv(&path).expect("csv");
+        let cell = |name: &str| {
+            let i = table.header.iter().position(|h| h == name).expect(name);
+            table.rows[0].1[i].clone()
+        };
+        assert_eq!(cell("worse_than_start"), "true");
+        assert_eq!(cell("worse_than_start_action"), "false");
+        assert_eq!(cell("worse_than_start_sensor"), "true");
+        let back = read_leaderboard_csv(&path).expect("read");
+        assert_eq!(back[0].figures.sensor_start_rmse_mm, 80.0);
+        // A leaderboard written before the by-model columns: the same figures.
+        let text = std::fs::read_to_string(&path).expect("text");
+        let older = text
+            .replace(",worse_than_start_action,worse_than_start_sensor,", ",")
+            .replace(",true,false,true,", ",true,");
+        assert_ne!(older, text);
+        std::fs::write(&path, older).expect("older");
+        let back = read_leaderboard_csv(&path).expect("an older leaderboard reads");
+        assert_eq!(back[0].figures.sensor_rmse_mm, 90.0);
+        assert_eq!(back[0].status, TrialStatus::Ok);
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

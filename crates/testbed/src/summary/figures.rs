@@ -381,6 +381,15 @@ impl Figures {
         )
     }
 
+    /// Whether a trial ended worse than its start, in all and by model: the
+    /// name of the output column (`leaderboard.csv`, `summary.json`'s trials)
+    /// that says so, and the test.
+    pub const WORSE_THAN_START: [(&'static str, fn(&Self) -> bool); 3] = [
+        ("worse_than_start", Self::worse_than_start),
+        ("worse_than_start_action", Self::action_worse_than_start),
+        ("worse_than_start_sensor", Self::sensor_worse_than_start),
+    ];
+
     /// Whether the learned action model ends worse than A0.
     pub fn action_worse_than_start(&self) -> bool {
         self.action_rmse_mm_s > self.action_a0_rmse_mm_s

@@ -51,7 +51,9 @@ pub fn summary_json(
             let mut v = serde_json::to_value(f).unwrap_or_default();
             v["seed"] = (*seed).into();
             v["status"] = status.to_string().into();
-            v["worse_than_start"] = (status.is_ok() && f.worse_than_start()).into();
+            for (name, worse) in Figures::WORSE_THAN_START {
+                v[name] = (status.is_ok() && worse(f)).into();
+            }
             v
         })
         .collect();
