@@ -38,7 +38,10 @@ macro_rules! figures {
             $( $(#[doc = $doc])* $(#[serde($($serde)*)])? pub $name: f64, )+
         }
 
-        impl Figures {
+        /// A test of a trial's figures: whether it ended worse than its start.
+pub type WorseTest = fn(&Figures) -> bool;
+
+impl Figures {
             /// Every figure, in `summary.json`'s order.
             pub const FIELDS: &'static [Field] = &[
                 $( Field {
@@ -384,7 +387,7 @@ impl Figures {
     /// Whether a trial ended worse than its start, in all and by model: the
     /// name of the output column (`leaderboard.csv`, `summary.json`'s trials)
     /// that says so, and the test.
-    pub const WORSE_THAN_START: [(&'static str, fn(&Self) -> bool); 3] = [
+    pub const WORSE_THAN_START: [(&'static str, WorseTest); 3] = [
         ("worse_than_start", Self::worse_than_start),
         ("worse_than_start_action", Self::action_worse_than_start),
         ("worse_than_start_sensor", Self::sensor_worse_than_start),
