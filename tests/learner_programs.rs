@@ -180,6 +180,40 @@ fn each_way_a_program_misbehaves_fails_its_trial_saying_how() {
 }
 
 #[test]
+fn a_programs_posterior_is_asked_for_at_the_end_and_checked() {
+    // Its draws are its own models: it predicts no error at all.
+    let ok = learn(&bad("posterior"), &[]).expect("a posterior that is right in form");
+    let p = ok.predicted.expect("a prediction from its posterior");
+    let a = p.learned.action.expect("an action band");
+    assert!(a.low.abs() < 1e-9 && a.high.abs() < 1e-9, "{a:?}");
+    let s = p.learned.sensor.expect("a sensor band");
+    assert!(s.low.abs() < 1e-6 && s.high.abs() < 1e-6, "{s:?}");
+    // One that declares none is asked for none.
+    assert!(learn(&bad("plain"), &[]).expect("ok").predicted.is_none());
+    // One whose posterior is wrong in form, or that dies when asked, fails
+    // its trial at its last frame, saying how.
+    let last = setup().2.frames.len() - 1;
+    for (mode, says) in [
+        (
+            "posterior_unsorted",
+            "impossible sensor table: readings not increasing",
+        ),
+        (
+            "posterior_too_many",
+            "answered 201 draws of its posterior when asked for 200",
+        ),
+        ("posterior_crash", "when asked for its posterior"),
+    ] {
+        let failed = learn(&bad(mode), &[]).expect_err(mode);
+        assert_eq!(failed.at().expect("where").0, last, "{mode}");
+        match failed.root() {
+            TrialError::LearnerFailed(why) => assert!(why.contains(says), "{mode}: {why}"),
+            other => panic!("{mode}: {other:?}"),
+        }
+    }
+}
+
+#[test]
 fn a_program_that_cannot_start_is_refused_before_any_trial() {
     let (scenario, ..) = setup();
     let mut s = scenario.clone();
@@ -405,7 +439,7 @@ fn the_conformance_check_passes_a_good_learner_and_names_each_broken_rule() {
     use testbed::learners::exec::conformance::check;
     let good = check("exec:python3 examples/learners/quickstart.py", 5.0);
     assert!(good.iter().all(|r| r.passed), "{good:#?}");
-    assert_eq!(good.len(), 7);
+    assert_eq!(good.len(), 8);
     let rule = |checks: &[testbed::learners::exec::conformance::RuleCheck], name: &str| {
         checks
             .iter()
@@ -431,6 +465,17 @@ fn the_conformance_check_passes_a_good_learner_and_names_each_broken_rule() {
         "{end:?}"
     );
     assert!(rule(&no_sensor, "150 s trial").passed);
+    // A posterior: checked when it says it has one, and only then.
+    let sure = rule(&check(&bad("posterior"), 5.0), "posterior");
+    assert!(sure.passed && sure.detail.contains("200 draws"), "{sure:?}");
+    let unsorted = check(&bad("posterior_unsorted"), 5.0);
+    let wrong = rule(&unsorted, "posterior");
+    assert!(
+        !wrong.passed && wrong.detail.contains("readings not increasing"),
+        "{wrong:?}"
+    );
+    assert!(rule(&unsorted, "150 s trial").passed);
+    assert!(rule(&good, "posterior").detail.contains("optional"));
     // No hello at all: said, and nothing else tried.
     let no_hello = check(&bad("no_hello"), 5.0);
     assert_eq!(no_hello.len(), 1);

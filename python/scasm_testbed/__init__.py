@@ -31,7 +31,7 @@ import math
 import sys
 import traceback
 from dataclasses import dataclass
-from typing import IO, Any, Dict, List, Mapping, Optional, Sequence, Type, Union
+from typing import IO, Any, Dict, List, Mapping, Optional, Sequence, Tuple, Type, Union
 
 __version__ = "0.2.0"
 """The package's version: the testbed's, which it ships with."""
@@ -95,6 +95,17 @@ class Models:
     x_s: Optional[float]
 
 
+@dataclass(frozen=True)
+class Draw:
+    """One draw of a learner's posterior over the robot's true responses, in
+    its own units: the action response (coefficients, lowest power first)
+    and the sensor response as a table of ``(reading px, location)`` sorted
+    by reading (2 to 64 points; the host interpolates between them)."""
+
+    action: Sequence[float]
+    sensor: Sequence[Tuple[float, float]]
+
+
 class Learner(abc.ABC):
     """A calibration learner. Subclasses set ``name`` (letters, digits, ``-``
     and ``_``), ``about`` and ``settings``, and implement :meth:`handle` and the
@@ -140,6 +151,13 @@ class Learner(abc.ABC):
         """The location the sensor model gave for the latest reading, or None."""
         return None
 
+    def posterior(self, draws: int) -> Optional[List[Draw]]:
+        """Optional: at most ``draws`` draws of its posterior over the robot's
+        true responses, asked once at the end of a trial; None if it has none
+        then. A learner that overrides it says so in its hello, and the host
+        judges its models against each draw: its predicted error and band."""
+        return None
+
     def set_up(self, own: Mapping[str, float], shared: Mapping[str, float]) -> None:
         """Keeps the settings in force (its own over their defaults) and calls
         :meth:`configure`: what the host's ``settings`` message does."""
@@ -175,15 +193,33 @@ def _finite(x: Optional[float]) -> Optional[float]:
     return x
 
 
+def _draws(draws: Optional[List[Draw]]) -> Optional[List[Dict[str, Any]]]:
+    """A posterior's draws as the protocol writes them, checked."""
+    if draws is None:
+        return None
+    out = []
+    for d in draws:
+        table = [[float(obs), float(x)] for obs, x in d.sensor]
+        if not all(math.isfinite(v) for p in table for v in p) or any(
+            b[0] <= a[0] for a, b in zip(table, table[1:])
+        ):
+            raise ValueError(f"a draw's sensor table must be finite and sorted by reading, got {table[:4]}...")
+        out.append({"action": _finite_list(d.action), "sensor": table})
+    return out
+
+
 def hello(learner_class: Type[Learner]) -> Dict[str, Any]:
     """The hello a learner of ``learner_class`` says."""
-    return {
+    out: Dict[str, Any] = {
         "type": "hello",
         "protocol": PROTOCOL,
         "name": learner_class.name,
         "about": learner_class.about,
         "settings": [s.declaration() for s in learner_class.settings],
     }
+    if learner_class.posterior is not Learner.posterior:
+        out["posterior"] = True
+    return out
 
 
 def run(learner_class: Type[Learner], stdin: Optional[IO[str]] = None, stdout: Optional[IO[str]] = None) -> None:
@@ -208,6 +244,8 @@ def run(learner_class: Type[Learner], stdin: Optional[IO[str]] = None, stdout: O
             elif kind == "query":
                 a = learner.models()
                 send({"type": "models", "action": a.action, "sensor": a.sensor, "x_a": a.x_a, "x_s": a.x_s})
+            elif kind == "posterior":
+                send({"type": "posterior", "draws": _draws(learner.posterior(m["draws"]))})
             elif kind == "settings":
                 if m.get("protocol") != PROTOCOL:
                     raise ValueError(f"the host speaks protocol {m.get('protocol')}, this package {PROTOCOL}")
@@ -228,6 +266,7 @@ def run(learner_class: Type[Learner], stdin: Optional[IO[str]] = None, stdout: O
 __all__ = [
     "Coefficients",
     "Command",
+    "Draw",
     "Event",
     "Learner",
     "Models",

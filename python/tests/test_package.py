@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Mapping, Optional
 import pytest
 
 import scasm_testbed
-from scasm_testbed import Coefficients, Command, Event, Learner, Reading, Setting, hello, run
+from scasm_testbed import Coefficients, Command, Draw, Event, Learner, Reading, Setting, hello, run
 from scasm_testbed.testing import events, replay, shared_settings
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -89,6 +89,40 @@ def test_a_non_finite_model_is_refused_with_an_error_line() -> None:
 
     with pytest.raises(SystemExit):
         exchange(Nan, [{"type": "settings", "protocol": 1, "settings": {}, "shared": {}}, {"type": "query"}])
+
+
+def test_a_learner_with_a_posterior_says_so_and_answers_it() -> None:
+    class Sure(Counting):
+        name = "sure"
+
+        def posterior(self, draws: int) -> Optional[List[Draw]]:
+            return [Draw([0.0, 1.0 + 0.01 * k], [(10.0, 3.0), (20.0, 1.5)]) for k in range(draws)]
+
+    assert "posterior" not in hello(Counting)
+    said = exchange(
+        Sure,
+        [
+            {"type": "settings", "protocol": 1, "settings": {}, "shared": {}},
+            {"type": "query"},
+            {"type": "posterior", "draws": 2},
+            {"type": "end"},
+        ],
+    )
+    assert said[0]["posterior"] is True
+    assert said[2] == {
+        "type": "posterior",
+        "draws": [
+            {"action": [0.0, 1.0], "sensor": [[10.0, 3.0], [20.0, 1.5]]},
+            {"action": [0.0, 1.01], "sensor": [[10.0, 3.0], [20.0, 1.5]]},
+        ],
+    }
+
+    class Unsorted(Sure):
+        def posterior(self, draws: int) -> Optional[List[Draw]]:
+            return [Draw([0.0, 1.0], [(20.0, 1.5), (10.0, 3.0)])]
+
+    with pytest.raises(SystemExit):
+        exchange(Unsorted, [{"type": "settings", "protocol": 1, "settings": {}, "shared": {}}, {"type": "posterior", "draws": 1}])
 
 
 def test_a_recorded_trial_replays_to_a_learner_in_process() -> None:

@@ -550,6 +550,15 @@ pub fn learn(
     let started = std::time::Instant::now();
     let posterior = learner.posterior(DRAWS);
     learner_wall += started.elapsed();
+    // A learner that fails when asked for its posterior (a program that
+    // lies or dies then) fails its trial, at the end.
+    if let Some(e) = learner_failed(learner) {
+        return Err(TrialError::At {
+            frame: frames.len().saturating_sub(1),
+            t_s: end_s,
+            source: Box::new(e),
+        });
+    }
     let start = a0_baseline.map(|b| reference.judge(end_s, b));
     let predicted = posterior.map(|p| {
         Prediction::of(

@@ -128,6 +128,17 @@ pub fn check(spec: &str, answer_timeout_s: f64) -> Vec<RuleCheck> {
         },
     ));
     out.push(rule(
+        "answers `posterior` at the end with draws right in form, if it says it has one",
+        match &long {
+            _ if !program.has_posterior() => Ok("says it has none (it is optional)".into()),
+            Ok(end) => end.draws.clone().map(|draws| match draws {
+                Some(n) => format!("{n} draws of the {} asked for", crate::predicted::DRAWS),
+                None => "null: none at the end of a 150 s trial".into(),
+            }),
+            Err(_) => Err("not tried: the trial did not run to its end".into()),
+        },
+    ));
+    out.push(rule(
         "exits within 2 s of `end`",
         match &long {
             Ok(end) if end.exited => Ok("exited".into()),
@@ -145,10 +156,13 @@ fn lowest(s: &Setting) -> f64 {
 }
 
 /// What a check's trial ended with.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct TrialEnd {
     action: bool,
     sensor: bool,
+    /// How many draws its posterior had at the end, if it gave one, or how
+    /// its answer failed.
+    draws: Result<Option<usize>, String>,
     exited: bool,
 }
 
@@ -215,10 +229,16 @@ fn trial(
     if learner.failure().is_some() {
         return Err(failed(&learner, frames));
     }
+    let posterior = learner.posterior(crate::predicted::DRAWS);
+    let draws = match learner.failure() {
+        Some(why) => Err(why.to_string()),
+        None => Ok(posterior.map(|p| p.draws.len())),
+    };
     let exited = learner.end();
     Ok(TrialEnd {
         action,
         sensor,
+        draws,
         exited,
     })
 }

@@ -6,7 +6,7 @@ use std::sync::{Mutex, OnceLock};
 use std::time::Duration;
 
 use scasm::declaration::{Setting, Values};
-use scasm::{CalibrationLearner, Event, EventError, Polynomial};
+use scasm::{CalibrationLearner, Event, EventError, Polynomial, Posterior};
 
 use crate::learners::exec::child::{Child, Fault, SharedStderr};
 use crate::learners::exec::protocol::{self, Models, Said};
@@ -61,6 +61,11 @@ impl Program {
     pub fn settings(&self) -> Vec<Setting> {
         self.hello.settings.clone()
     }
+
+    /// Whether its hello says it answers `posterior` at the end of a trial.
+    pub fn has_posterior(&self) -> bool {
+        self.hello.posterior
+    }
 }
 
 /// The first line of a started program: its hello.
@@ -72,7 +77,7 @@ fn read_hello(child: &mut Child) -> Result<protocol::Hello, String> {
     match said {
         Said::Hello(h) => Ok(h),
         Said::Error(m) => Err(with_stderr(&format!("refused to start: {m}"), child)),
-        Said::Models(_) => Err("answered models before saying hello".into()),
+        Said::Models(_) | Said::Posterior(_) => Err("answered before saying hello".into()),
     }
 }
 
@@ -143,6 +148,8 @@ pub struct ExecLearner {
     answer_timeout: Duration,
     state: Mutex<State>,
     failure: OnceLock<String>,
+    /// Whether its hello said it answers `posterior`.
+    posterior: bool,
 }
 
 #[derive(Debug)]
@@ -188,6 +195,7 @@ impl ExecLearner {
                 models: Models::default(),
             }),
             failure: OnceLock::new(),
+            posterior: hello.posterior,
         })
     }
 
@@ -242,6 +250,9 @@ impl ExecLearner {
                     self.fail(format!("gave up: {m}; {}", state.child.stderr_tail()));
                 }
                 Ok(Said::Hello(_)) => self.fail("said hello again instead of answering".into()),
+                Ok(Said::Posterior(_)) => {
+                    self.fail("answered a posterior when asked for its models".into());
+                }
                 Err(e) => self.fail(e),
             }
             if self.failure.get().is_some() {
@@ -249,6 +260,44 @@ impl ExecLearner {
             }
         }
         state.models
+    }
+
+    /// Its posterior: asked once, after its last models, if its hello said it
+    /// has one. An answer that is not a posterior, more draws than asked, or
+    /// an impossible draw fails the trial like a bad answer to a query.
+    fn ask_posterior(&self, draws: usize) -> Option<Posterior> {
+        if !self.posterior || self.failure.get().is_some() {
+            return None;
+        }
+        let mut state = self.state.lock().ok()?;
+        if let Some(extra) = state.child.unasked() {
+            let said = format!(
+                "wrote a line nobody asked for: `{}` (one answer per query; logs go to stderr)",
+                extra.chars().take(160).collect::<String>()
+            );
+            self.fail(with_stderr(&said, &state.child));
+            return None;
+        }
+        let answer = state
+            .child
+            .send(&protocol::posterior_request(draws))
+            .and_then(|()| state.child.receive(self.answer_timeout));
+        let said = answer
+            .map_err(|f| fault(&f, &state.child, "when asked for its posterior"))
+            .and_then(|line| protocol::parse(&line).map_err(|e| with_stderr(&e, &state.child)));
+        match said {
+            Ok(Said::Posterior(Some(p))) if p.draws.len() > draws => self.fail(format!(
+                "answered {} draws of its posterior when asked for {draws}",
+                p.draws.len()
+            )),
+            Ok(Said::Posterior(p)) => return p,
+            Ok(Said::Error(m)) => {
+                self.fail(format!("gave up: {m}; {}", state.child.stderr_tail()));
+            }
+            Ok(_) => self.fail("answered something else when asked for its posterior".into()),
+            Err(e) => self.fail(e),
+        }
+        None
     }
 }
 
@@ -296,6 +345,10 @@ impl CalibrationLearner for ExecLearner {
 
     fn x_s(&self) -> Option<f64> {
         self.models().x_s
+    }
+
+    fn posterior(&self, draws: usize) -> Option<Posterior> {
+        self.ask_posterior(draws)
     }
 
     fn failure(&self) -> Option<&str> {

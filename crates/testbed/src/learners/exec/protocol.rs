@@ -2,7 +2,7 @@
 //! object per line, and the checks on what a learner says: no I/O here.
 
 use scasm::declaration::{Kind, Setting};
-use scasm::{Event, MAX_COEFFS, Polynomial};
+use scasm::{Draw, Event, MAX_COEFFS, Polynomial, Posterior};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
@@ -37,6 +37,8 @@ struct HelloLine {
     about: String,
     #[serde(default)]
     settings: Vec<SettingLine>,
+    #[serde(default)]
+    posterior: bool,
 }
 
 /// What a learner says first: who it is and the settings it takes.
@@ -48,6 +50,8 @@ pub struct Hello {
     pub about: String,
     /// Its own settings, as declared.
     pub settings: Vec<Setting>,
+    /// Whether it answers `posterior` at the end of a trial.
+    pub posterior: bool,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -72,6 +76,24 @@ pub struct Models {
     pub x_s: Option<f64>,
 }
 
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DrawLine {
+    action: Vec<f64>,
+    sensor: Vec<(f64, f64)>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PosteriorLine {
+    draws: Option<Vec<DrawLine>>,
+}
+
+/// The most points a draw's sensor table may have: the host's 200 draws of
+/// this many points, written in full, are about half a line's bound
+/// ([`super::child::MAX_LINE_BYTES`]).
+pub const MAX_TABLE_POINTS: usize = 64;
+
 /// What a line from a learner is, once read.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Said {
@@ -79,6 +101,8 @@ pub enum Said {
     Hello(Hello),
     /// An answer to a query.
     Models(Models),
+    /// An answer to `posterior`: its draws, or none.
+    Posterior(Option<Posterior>),
     /// It refuses to go on, and says why.
     Error(String),
 }
@@ -125,6 +149,9 @@ pub fn parse(line: &str) -> Result<Said, String> {
     match kind.as_str() {
         "hello" => hello(serde_json::from_value(body).map_err(fields)?).map(Said::Hello),
         "models" => models(serde_json::from_value(body).map_err(fields)?).map(Said::Models),
+        "posterior" => {
+            posterior(serde_json::from_value(body).map_err(fields)?).map(Said::Posterior)
+        }
         "error" => {
             #[derive(Deserialize)]
             #[serde(deny_unknown_fields)]
@@ -135,7 +162,7 @@ pub fn parse(line: &str) -> Result<Said, String> {
             Ok(Said::Error(e.message))
         }
         other => Err(not_protocol(format!(
-            "unknown type `{other}`; a learner says hello, models or error"
+            "unknown type `{other}`; a learner says hello, models, posterior or error"
         ))),
     }
 }
@@ -190,7 +217,65 @@ fn hello(h: HelloLine) -> Result<Hello, String> {
         name: h.name,
         about: h.about,
         settings,
+        posterior: h.posterior,
     })
+}
+
+/// The host's request for `draws` draws of the learner's posterior.
+pub fn posterior_request(draws: usize) -> String {
+    json!({"type": "posterior", "draws": draws}).to_string()
+}
+
+/// A posterior, checked: each draw an action model of 1 to [`MAX_COEFFS`]
+/// finite coefficients and a sensor table of 2 to [`MAX_TABLE_POINTS`]
+/// finite points whose readings are positive and increasing; at least one
+/// draw, or null (none).
+fn posterior(p: PosteriorLine) -> Result<Option<Posterior>, String> {
+    let Some(lines) = p.draws else {
+        return Ok(None);
+    };
+    if lines.is_empty() {
+        return Err("answered a posterior of no draws (null says it has none)".into());
+    }
+    let mut draws = Vec::with_capacity(lines.len());
+    for (i, d) in lines.into_iter().enumerate() {
+        let action = Polynomial::new(&d.action)
+            .filter(Polynomial::is_finite)
+            .ok_or_else(|| {
+                format!(
+                    "answered draw {i} with an impossible action model {:?}: 1 to {MAX_COEFFS} \
+                     finite coefficients, lowest power first",
+                    d.action
+                )
+            })?;
+        let table = &d.sensor;
+        let fault = if !(2..=MAX_TABLE_POINTS).contains(&table.len()) {
+            Some(format!("{} points (2 to {MAX_TABLE_POINTS})", table.len()))
+        } else if let Some(&(obs, x)) = table
+            .iter()
+            .find(|(obs, x)| !(obs.is_finite() && x.is_finite() && *obs > 0.0))
+        {
+            Some(format!(
+                "the point [{obs}, {x}] (a positive reading, a finite location)"
+            ))
+        } else {
+            table
+                .windows(2)
+                .find(|w| w[1].0 <= w[0].0)
+                .map(|w| format!("readings not increasing ({} then {})", w[0].0, w[1].0))
+        };
+        if let Some(why) = fault {
+            return Err(format!(
+                "answered draw {i} with an impossible sensor table: {why}; a table is \
+                 [[reading px, location], ...] sorted by reading"
+            ));
+        }
+        draws.push(Draw {
+            action,
+            sensor: d.sensor,
+        });
+    }
+    Ok(Some(Posterior { draws }))
 }
 
 /// An answer, checked: models of 1 to [`MAX_COEFFS`] finite coefficients,
@@ -348,6 +433,45 @@ mod tests {
             parse(r#"{"type":"error","message":"no"}"#),
             Ok(Said::Error("no".into()))
         );
+    }
+
+    #[test]
+    fn a_posterior_is_read_and_each_draw_checked() {
+        let ok = r#"{"type":"posterior","draws":[{"action":[0,1],"sensor":[[10,3],[20,1.5]]}]}"#;
+        let Ok(Said::Posterior(Some(p))) = parse(ok) else {
+            panic!("{:?}", parse(ok));
+        };
+        assert_eq!(p.draws.len(), 1);
+        assert_eq!(p.draws[0].sensor, vec![(10.0, 3.0), (20.0, 1.5)]);
+        assert_eq!(
+            parse(r#"{"type":"posterior","draws":null}"#),
+            Ok(Said::Posterior(None))
+        );
+        for (bad, says) in [
+            (
+                ok.replace("[[10,3],[20,1.5]]", "[[10,3]]"),
+                "1 points (2 to 64)",
+            ),
+            (
+                ok.replace("[20,1.5]", "[10,1.5]"),
+                "readings not increasing",
+            ),
+            (ok.replace("[10,3]", "[-1,3]"), "a positive reading"),
+            (ok.replace("[0,1]", "[]"), "impossible action model"),
+            (ok.replace("1.5", "NaN"), "not finite"),
+            (
+                r#"{"type":"posterior","draws":[]}"#.into(),
+                "no draws (null says it has none)",
+            ),
+            (ok.replace("\"sensor\"", "\"table\""), "not the protocol"),
+        ] {
+            assert!(
+                parse(&bad).is_err_and(|e| e.contains(says)),
+                "{bad}: {says}"
+            );
+        }
+        let hello = r#"{"type":"hello","protocol":1,"name":"mine","posterior":true}"#;
+        assert!(matches!(parse(hello), Ok(Said::Hello(h)) if h.posterior));
     }
 
     #[test]
