@@ -222,16 +222,7 @@ impl ExecLearner {
             // A protocol is one answer per query: a line written unasked
             // (a second answer, a stray print) is a fault, not a late answer.
             // (An `error` may come at any time: a learner that refuses an event.)
-            if let Some(extra) = state.child.unasked() {
-                let said = match protocol::parse(&extra) {
-                    Ok(Said::Error(m)) => format!("gave up: {m}"),
-                    _ => format!(
-                        "wrote a line nobody asked for: `{}` (one answer per query; logs go to \
-                         stderr)",
-                        extra.chars().take(160).collect::<String>()
-                    ),
-                };
-                self.fail(with_stderr(&said, &state.child));
+            if self.failed_unasked(&state.child) {
                 return Models::default();
             }
             let answer = state
@@ -262,6 +253,24 @@ impl ExecLearner {
         state.models
     }
 
+    /// Fails the learner if it wrote a line nobody asked for (a second
+    /// answer, a stray print; an `error` says why it gave up), as a protocol
+    /// of one answer per question has it; whether it did.
+    fn failed_unasked(&self, child: &Child) -> bool {
+        let Some(extra) = child.unasked() else {
+            return false;
+        };
+        let said = match protocol::parse(&extra) {
+            Ok(Said::Error(m)) => format!("gave up: {m}"),
+            _ => format!(
+                "wrote a line nobody asked for: `{}` (one answer per query; logs go to stderr)",
+                extra.chars().take(160).collect::<String>()
+            ),
+        };
+        self.fail(with_stderr(&said, child));
+        true
+    }
+
     /// Its posterior: asked once, after its last models, if its hello said it
     /// has one. An answer that is not a posterior, more draws than asked, or
     /// an impossible draw fails the trial like a bad answer to a query.
@@ -270,12 +279,7 @@ impl ExecLearner {
             return None;
         }
         let mut state = self.state.lock().ok()?;
-        if let Some(extra) = state.child.unasked() {
-            let said = format!(
-                "wrote a line nobody asked for: `{}` (one answer per query; logs go to stderr)",
-                extra.chars().take(160).collect::<String>()
-            );
-            self.fail(with_stderr(&said, &state.child));
+        if self.failed_unasked(&state.child) {
             return None;
         }
         let answer = state
