@@ -30,7 +30,7 @@ use testbed::experiment::{self, RecordedTrial};
 use testbed::metrics;
 use testbed::reference::{Judgement, MeasuredModels, Reference};
 use testbed::scenario::Scenario;
-use testbed::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
+use testbed::trial::{self, FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
 
 use crate::ReportError;
 use crate::paper::{action_chart, sensor_chart};
@@ -495,8 +495,10 @@ impl TrialLog {
 /// Writes the trial of `scenario` from `seed`, run by learner `learner`, to
 /// `log`, frame by frame: the world, then what the learner knew after it.
 /// The learner runs over `recording` (the trial's recording, or, if `None`,
-/// one made first); then the physics runs the trial again for the scene,
-/// and each frame is checked against the recording's, bit for bit.
+/// one made first); then the physics runs the trial again for the scene
+/// (with a behaviour that steers by the learner's models, beside another
+/// of the same learner fed the same frames), and each frame is checked
+/// against the recording's, bit for bit.
 pub fn log_trial(
     log: &mut TrialLog,
     scenario: &Scenario,
@@ -507,16 +509,29 @@ pub fn log_trial(
 ) -> Result<RecordedTrial, RrdError> {
     let recording = match recording {
         Some(r) => r.clone(),
-        None => experiment::record(scenario, models, seed)?,
+        None => experiment::record_for(scenario, models, seed, learner)?,
     };
     let outcome = experiment::learn_every(scenario, models, &recording, learner, MODELS_EVERY_S)?;
     let config = experiment::trial_config(scenario, models, seed)?;
     let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
+    let mut steering = if experiment::steered(scenario) {
+        let reference = models.reference();
+        Some(
+            testbed::learners::build(learner, scenario, &reference)
+                .map_err(TrialError::LearnerSetup)?,
+        )
+    } else {
+        None
+    };
     let mut judgements = outcome.over_time.iter().peekable();
     for (k, (recorded, row)) in recording.frames.iter().zip(&outcome.trace).enumerate() {
         let frame = runner.step_frame()?;
         if frame != *recorded {
             return Err(RrdError::NotReproduced { seed, frame: k });
+        }
+        if let Some(steering) = steering.as_mut() {
+            trial::feed_checked(steering.as_mut(), &frame)?;
+            runner.consult(&frame, steering.as_ref());
         }
         log.world_frame(runner.sim(), &frame)?;
         while let Some(j) = judgements.next_if(|j| j.t_s <= row.t_s) {

@@ -105,14 +105,40 @@ pub fn world_for(
     )?)
 }
 
-/// Records one trial of `scenario` from `seed`: the world only.
+/// Records one trial of `scenario` from `seed`: the world only, or, for a
+/// behaviour that steers by the learner's models, with the scenario's
+/// learner in the loop ([`record_for`]).
 pub fn record(
     scenario: &Scenario,
     models: &MeasuredModels,
     seed: u64,
 ) -> Result<Recording, TrialError> {
+    record_for(scenario, models, seed, &scenario.learner_name)
+}
+
+/// Whether `scenario`'s behaviour steers by the learner's models
+/// ([`crate::behaviour::Declaration::steered`]).
+pub fn steered(scenario: &Scenario) -> bool {
+    crate::behaviour::resolve(scenario.behaviour_name).is_ok_and(|d| d.steered)
+}
+
+/// [`record`] for a run of `learner`: a behaviour that steers by the
+/// learner's models sees one of its own, built as the run's will be
+/// ([`trial::record_steered`]); any other records the world alone.
+pub fn record_for(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+    learner: &str,
+) -> Result<Recording, TrialError> {
     let config = trial_config(scenario, models, seed)?;
-    trial::record_in(world_for(scenario, scenario.sim, &config)?, config)
+    let world = world_for(scenario, scenario.sim, &config)?;
+    if !steered(scenario) {
+        return trial::record_in(world, config);
+    }
+    let mut built = learners::build_kept(learner, scenario, &models.reference())
+        .map_err(TrialError::LearnerSetup)?;
+    trial::record_steered(world, config, built.learner.as_mut())
 }
 
 /// Runs learner `name` (set up for `scenario`) over a recording, judged
@@ -307,8 +333,22 @@ pub struct Job<'a> {
 /// is and what it reads, [`crate::behaviour::Declaration::key`]), the
 /// trial's length, its blanked intervals, its changes of the world, and its
 /// seed. Jobs with the same key can share one recording, whatever their
-/// learners.
+/// learners, unless the behaviour steers by the learner's models: see
+/// [`world_key_for`].
 pub fn world_key(scenario: &Scenario, seed: u64) -> String {
+    world_key_for(scenario, seed, &scenario.learner_name)
+}
+
+/// [`world_key`] for a run of `learner`: with a behaviour that steers by
+/// the learner's models, the learner and its settings are part of the key.
+pub fn world_key_for(scenario: &Scenario, seed: u64, learner: &str) -> String {
+    let steering = if steered(scenario) {
+        let own = learners::resolve(learner)
+            .map_or_else(|e| e, |l| format!("{:?}", scenario.own_settings(&l)));
+        format!("/{learner}:{:?}:{own}", scenario.learner)
+    } else {
+        String::new()
+    };
     let behaviour = crate::behaviour::resolve(scenario.behaviour_name).map_or_else(
         |e| e,
         |d| {
@@ -321,7 +361,7 @@ pub fn world_key(scenario: &Scenario, seed: u64) -> String {
         },
     );
     format!(
-        "{}/{behaviour}/{}/{}/{}/{seed}",
+        "{}/{behaviour}{steering}/{}/{}/{}/{seed}",
         scenario.reference_key(),
         scenario.duration_s,
         scenario.blank.to_text(),
@@ -339,13 +379,13 @@ pub fn run_jobs(
     let mut worlds: std::collections::BTreeMap<String, Vec<usize>> = Default::default();
     for (i, job) in jobs.iter().enumerate() {
         worlds
-            .entry(world_key(job.scenario, job.seed))
+            .entry(world_key_for(job.scenario, job.seed, job.learner))
             .or_default()
             .push(i);
     }
     worlds.into_values().par_bridge().for_each(|members| {
         let first = &jobs[members[0]];
-        match record(first.scenario, first.models, first.seed) {
+        match record_for(first.scenario, first.models, first.seed, first.learner) {
             Ok(recording) => members.par_iter().for_each(|&i| {
                 let job = &jobs[i];
                 done(i, &learn(job.scenario, job.models, &recording, job.learner));

@@ -552,7 +552,7 @@ pub fn run_pending(
         .collect();
     let worlds: std::collections::BTreeSet<String> = jobs
         .iter()
-        .map(|j| experiment::world_key(j.scenario, j.seed))
+        .map(|j| experiment::world_key_for(j.scenario, j.seed, j.learner))
         .collect();
     say(&format!("{} distinct worlds to simulate", worlds.len()));
     let shared = Mutex::new((results, None::<SweepError>));

@@ -143,6 +143,16 @@ pub struct Recording {
 }
 
 impl Recording {
+    /// The frames recorded from `seed`, timed from `started`.
+    fn timed(seed: u64, frames: Vec<FrameRecord>, started: std::time::Instant) -> Self {
+        let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
+        Self {
+            seed,
+            frames,
+            realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
+        }
+    }
+
     /// Whether the robot tipped over at any point.
     pub fn fell(&self) -> bool {
         self.fell_at_s().is_some()
@@ -274,6 +284,13 @@ impl<W: World> TrialRunner<W> {
         })
     }
 
+    /// Shows the behaviour `learner` once it has been fed `frame` (for a
+    /// behaviour that steers by the learner's models, see
+    /// [`record_steered`]).
+    pub fn consult(&mut self, frame: &FrameRecord, learner: &dyn CalibrationLearner) {
+        self.behaviour.consult(frame.end_s(), learner);
+    }
+
     /// Runs frames until the trial's time is up or `stop` says so (it sees the
     /// behaviour after each frame), and returns them.
     pub fn record_until(
@@ -296,12 +313,37 @@ pub fn record_in(world: impl World, config: TrialConfig) -> Result<Recording, Tr
     let started = std::time::Instant::now();
     let seed = config.seed;
     let frames = TrialRunner::in_world(world, config)?.record_until(|_| false)?;
-    let simulated_s = frames.last().map_or(0.0, FrameRecord::end_s);
-    Ok(Recording {
-        seed,
-        frames,
-        realtime_factor: simulated_s / started.elapsed().as_secs_f64().max(1e-9),
-    })
+    Ok(Recording::timed(seed, frames, started))
+}
+
+/// Records a whole trial in `world` (built for `config`) whose behaviour
+/// steers by `learner`'s models: after each frame the learner is fed it
+/// ([`feed_checked`]) and the behaviour sees the learner
+/// ([`Behaviour::consult`]). The recording is the world's frames, as any;
+/// the same learner fed them again learns the same, so a run judges a fresh
+/// one over it like any recording. Its realtime factor counts the
+/// learner's time too.
+pub fn record_steered(
+    world: impl World,
+    config: TrialConfig,
+    learner: &mut dyn CalibrationLearner,
+) -> Result<Recording, TrialError> {
+    let started = std::time::Instant::now();
+    let seed = config.seed;
+    let mut runner = TrialRunner::in_world(world, config)?;
+    let mut frames = Vec::with_capacity(runner.total_frames().min(1 << 16) as usize);
+    while !runner.finished() {
+        let frame = runner.step_frame()?;
+        let at = |e: TrialError| TrialError::At {
+            frame: frames.len(),
+            t_s: frame.end_s(),
+            source: Box::new(e),
+        };
+        feed_checked(learner, &frame).map_err(at)?;
+        runner.consult(&frame, learner);
+        frames.push(frame);
+    }
+    Ok(Recording::timed(seed, frames, started))
 }
 
 /// Records a whole trial of the robot in rapier: the world only, no learner.

@@ -45,8 +45,20 @@ const LIGHTEST: f64 = 1e-3;
 const MERGE_WITHIN: f64 = 0.05;
 
 /// `(1, c, ..., c^degree)`.
-fn basis(c: f64, degree: usize) -> DVector<f64> {
+pub(crate) fn basis(c: f64, degree: usize) -> DVector<f64> {
     DVector::from_iterator(degree + 1, (0..=degree).map(|k| c.powi(k as i32)))
+}
+
+/// `L`: the mean of `f(c) f(c)^T` over the metric's 31 commands, whose
+/// `trace(L M^-1)` is a fit's average prediction variance over them.
+pub(crate) fn metric_matrix(degree: usize) -> DMatrix<f64> {
+    let n = degree + 1;
+    let mut l = DMatrix::zeros(n, n);
+    for k in 0..METRIC_COMMANDS {
+        let g = basis(-1.0 + 2.0 * k as f64 / (METRIC_COMMANDS - 1) as f64, degree);
+        l += &g * g.transpose() / METRIC_COMMANDS as f64;
+    }
+    l
 }
 
 /// The I-optimal design's support over `[-1, 1]`: each command and its
@@ -57,11 +69,7 @@ pub fn i_optimal(degree: usize) -> Vec<(f64, f64)> {
     let f: Vec<DVector<f64>> = (0..CANDIDATES)
         .map(|k| basis(even(k, CANDIDATES), degree))
         .collect();
-    let mut l = DMatrix::zeros(n, n);
-    for k in 0..METRIC_COMMANDS {
-        let g = basis(even(k, METRIC_COMMANDS), degree);
-        l += &g * g.transpose() / METRIC_COMMANDS as f64;
-    }
+    let l = metric_matrix(degree);
     let mut w = vec![1.0 / CANDIDATES as f64; CANDIDATES];
     for _ in 0..ITERATIONS {
         let mut m = DMatrix::zeros(n, n);

@@ -4,10 +4,12 @@
 //! behaviours a run can name are declared in [`registry`]: the paper's
 //! (section II, [`paper`]: random commands held for a while, turning round
 //! when the beacon looks too big or too small) and one that chooses its
-//! commands by an optimal design ([`design`]). The constant walk of
-//! section IV is here too.
+//! commands by an optimal design ([`design`]), and one that steers by the
+//! learner's current models ([`explore`]). The constant walk of section IV
+//! is here too.
 
 pub mod design;
+pub mod explore;
 pub mod paper;
 pub mod registry;
 
@@ -76,6 +78,14 @@ pub trait Behaviour: std::fmt::Debug + Send {
     fn observe(&mut self, t_s: f64, obs_px: Option<f64>);
     /// Which way the robot is going.
     fn phase(&self) -> Phase;
+    /// Sees the learner after it has been fed the frame that ended at
+    /// `t_s`: what it reports (its models, its locations, its posterior),
+    /// never the ground truth. Called only for a behaviour declared
+    /// [`Declaration::steered`], whose trial runs with its learner in the
+    /// loop; the default ignores it.
+    fn consult(&mut self, t_s: f64, learner: &dyn scasm::CalibrationLearner) {
+        let _ = (t_s, learner);
+    }
 }
 
 /// One constant command towards the beacon until it looks as big as at the

@@ -3,7 +3,9 @@
 //! uniformly from `[0, max]` forwards and `[-max, 0]` backwards, turning
 //! round when the beacon looks too big or too small. The same walk with its
 //! command magnitudes drawn from a design instead ([`Draw::Design`]) is the
-//! `design` behaviour ([`super::design`]).
+//! `design` behaviour ([`super::design`]); chosen by an explorer that sees
+//! the learner's models ([`Draw::Explore`]), the `explore` behaviour
+//! ([`super::explore`]).
 
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
@@ -18,6 +20,9 @@ pub enum Draw {
     /// From these fractions of `max`, each with its probability (summing
     /// to 1), in increasing order of fraction.
     Design(Vec<(f64, f64)>),
+    /// Chosen by the explorer, from what the robot has walked and the
+    /// learner's models (no random draw).
+    Explore(Box<super::explore::Explorer>),
 }
 
 /// The behaviour's state: its phase, the command in force and until when.
@@ -73,16 +78,21 @@ impl TrainingBehaviour {
                 }
                 chosen * max
             }
+            Draw::Explore(explorer) => explorer.choose(self.phase, self.command, &self.config),
         };
         self.hold(magnitude, t_s);
     }
 
     /// Holds `magnitude` in the current phase's direction from `t_s`.
     fn hold(&mut self, magnitude: f64, t_s: f64) {
-        self.command = match self.phase {
+        let command = match self.phase {
             Phase::Forwards => magnitude,
             Phase::Backwards => -magnitude,
         };
+        if let Draw::Explore(explorer) = &mut self.draw {
+            explorer.held(t_s, command != self.command);
+        }
+        self.command = command;
         self.hold_until_s = t_s + self.config.hold_s;
     }
 }
@@ -91,6 +101,9 @@ impl Behaviour for TrainingBehaviour {
     /// Turns round if the beacon looks too big or too small, which starts a new
     /// command at once.
     fn observe(&mut self, t_s: f64, obs_px: Option<f64>) {
+        if let Draw::Explore(explorer) = &mut self.draw {
+            explorer.walked(t_s, self.command, self.config.max_command, obs_px.is_some());
+        }
         let Some(obs) = obs_px else { return };
         let n = self.config.turn_median_of.max(1);
         self.recent.push_back(obs);
@@ -125,5 +138,11 @@ impl Behaviour for TrainingBehaviour {
 
     fn phase(&self) -> Phase {
         self.phase
+    }
+
+    fn consult(&mut self, t_s: f64, learner: &dyn scasm::CalibrationLearner) {
+        if let Draw::Explore(explorer) = &mut self.draw {
+            explorer.consult(t_s, learner);
+        }
     }
 }

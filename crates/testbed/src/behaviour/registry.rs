@@ -25,13 +25,18 @@ pub struct Declaration {
     /// commands depend on, as text: two scenarios whose keys are equal walk
     /// the same (see [`crate::experiment::world_key`]).
     pub key: fn(&BehaviourConfig) -> String,
+    /// Whether it steers by the learner's models
+    /// ([`Behaviour::consult`](super::Behaviour::consult)): its trial then
+    /// runs with the learner in the loop, and a recorded world is shared
+    /// only by runs of the same learner with the same settings.
+    pub steered: bool,
 }
 
 /// The behaviour a run uses unless told otherwise.
 pub const DEFAULT: &str = "paper";
 
 /// Every behaviour, the default first.
-pub const BEHAVIOURS: [Declaration; 2] = [
+pub const BEHAVIOURS: [Declaration; 3] = [
     Declaration {
         name: "paper",
         doc: "the paper's (section II): commands drawn uniformly from [0, max] forwards and \
@@ -39,6 +44,7 @@ pub const BEHAVIOURS: [Declaration; 2] = [
               or too small",
         build: |config, rng| Box::new(TrainingBehaviour::new(config, rng, Phase::Forwards)),
         key: |_| "paper".into(),
+        steered: false,
     },
     Declaration {
         name: "design",
@@ -62,6 +68,31 @@ pub const BEHAVIOURS: [Declaration; 2] = [
                 config.action_degree + config.design_extra_degree
             )
         },
+        steered: false,
+    },
+    Declaration {
+        name: "explore",
+        doc: "the paper's walk with each command chosen, when due, to lower the action model's \
+              average prediction variance the most (sequential I-optimal design for the design's \
+              polynomial) given the commands walked so far and how long the learner's current \
+              models say the hold would last; runs with the learner in the loop",
+        build: |config, rng| {
+            let explorer =
+                super::explore::Explorer::new(config.action_degree + config.design_extra_degree);
+            Box::new(TrainingBehaviour::drawing(
+                config,
+                Draw::Explore(Box::new(explorer)),
+                rng,
+                Phase::Forwards,
+            ))
+        },
+        key: |config| {
+            format!(
+                "explore/{}",
+                config.action_degree + config.design_extra_degree
+            )
+        },
+        steered: true,
     },
 ];
 
