@@ -481,3 +481,23 @@ fn the_conformance_check_passes_a_good_learner_and_names_each_broken_rule() {
     assert_eq!(no_hello.len(), 1);
     assert!(!no_hello[0].passed && no_hello[0].detail.contains("giving up before hello"));
 }
+
+#[test]
+fn a_program_that_fails_while_steering_the_walk_fails_its_trial_saying_how() {
+    // The explore behaviour asks its twin of the learner for its models
+    // once a second; a program that crashes when asked ends the recording
+    // at that frame, with its reason and its stderr.
+    let (scenario, models, _) = setup();
+    let mut s = scenario.clone();
+    s.set("behaviour.name=explore").expect("declared");
+    s.set("trial.duration=30").expect("a duration");
+    let e = experiment::record_for(&s, models, 3, &bad("crash")).expect_err("the twin crashed");
+    let why = e.to_string();
+    assert!(e.at().is_some(), "at a frame: {why}");
+    assert!(
+        why.contains("exited with status 3") && why.contains("bad learner: crashing on purpose"),
+        "{why}"
+    );
+    // The same program, well behaved, steers a whole trial.
+    assert!(experiment::record_for(&s, models, 3, &bad("plain")).is_ok());
+}

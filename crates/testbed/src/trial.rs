@@ -2,9 +2,10 @@
 //! behaviour drives the robot in any [`crate::world::World`], whose camera reads
 //! the beacon at 20 Hz) records each frame, and a calibration learner is fed
 //! each frame's command and reading, and nothing else. Ground truth is recorded
-//! beside them for judging, never shown to a learner. Because the behaviour never
-//! looks at a learner, one recording can feed any number of learners, live or
-//! replayed from disk.
+//! beside them for judging, never shown to a learner. A behaviour that never
+//! looks at a learner records a world any number of learners can be fed,
+//! live or replayed from disk; one that steers by the learner's models
+//! records with a twin of the learner in the loop ([`record_steered`]).
 
 use quadsim::{QuadrupedSim, RobotDescription, SimConfig, SimError};
 use scasm::{CalibrationLearner, EventError, Polynomial};
@@ -178,7 +179,8 @@ impl Recording {
 }
 
 /// A trial in progress: a world ([`World`]) and the training behaviour
-/// that drives it. It knows nothing of learners; [`feed`] gives its frames
+/// that drives it. It knows nothing of learners ([`TrialRunner::consult`]
+/// shows one to a behaviour that steers by it); [`feed`] gives its frames
 /// to any number of them.
 #[derive(Debug)]
 pub struct TrialRunner<W: World = RapierWorld> {
