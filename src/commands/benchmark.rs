@@ -127,7 +127,7 @@ pub fn main(args: Args) -> Result<()> {
             bench.suite.len(),
             bench.seeds.len(),
             worlds.len() * bench.learners.len(),
-            worlds.len(),
+            bench.simulations(&worlds),
             rayon::current_num_threads()
         );
         let bar = crate::progress_bar((worlds.len() * bench.learners.len()) as u64, "trials");

@@ -26,7 +26,7 @@ pub struct Declaration {
     /// the same (see [`crate::experiment::world_key`]).
     pub key: fn(&BehaviourConfig) -> String,
     /// Whether it steers by the learner's models
-    /// ([`Behaviour::consult`](super::Behaviour::consult)): its trial then
+    /// ([`Behaviour::consult`]): its trial then
     /// runs with the learner in the loop, and a recorded world is shared
     /// only by runs of the same learner with the same settings.
     pub steered: bool,

@@ -127,7 +127,24 @@ impl Benchmark {
         shard_worlds(self.suite.len(), &self.seeds, k, n)
     }
 
-    /// Runs every learner on `worlds`, each world simulated once, calling
+    /// How many simulations `worlds` take: one each, but one per learner
+    /// for a scenario whose behaviour steers by the learner
+    /// ([`experiment::steered`]).
+    pub fn simulations(&self, worlds: &[(usize, u64)]) -> usize {
+        worlds
+            .iter()
+            .map(|&(i, _)| {
+                if experiment::steered(&self.suite[i].scenario) {
+                    self.specs.len()
+                } else {
+                    1
+                }
+            })
+            .sum()
+    }
+
+    /// Runs every learner on `worlds`, each world simulated once (once per
+    /// learner for a behaviour that steers by it), calling
     /// `done` as each trial finishes; the entries, in the benchmark's order.
     pub fn run(&self, worlds: &[(usize, u64)], done: &(dyn Fn() + Sync)) -> Vec<Entry> {
         // (scenario index, learner index, job)
