@@ -500,4 +500,17 @@ fn a_program_that_fails_while_steering_the_walk_fails_its_trial_saying_how() {
     );
     // The same program, well behaved, steers a whole trial.
     assert!(experiment::record_for(&s, models, 3, &bad("plain")).is_ok());
+    // A run keeps the steering program's whole stderr with the failure.
+    s.set(&format!("learner.name={}", bad("crash")))
+        .expect("a program");
+    let kept = Mutex::new(None);
+    let results = experiment::run_trials(&s, models, &[3], &|t| {
+        *kept.lock().expect("kept") = t.stderr.map(str::to_owned);
+    });
+    assert!(results[0].1.is_err());
+    let stderr = kept.into_inner().expect("kept").unwrap_or_default();
+    assert!(
+        stderr.contains("bad learner: crashing on purpose"),
+        "{stderr:?}"
+    );
 }

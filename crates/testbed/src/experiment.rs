@@ -131,13 +131,51 @@ pub fn record_for(
     seed: u64,
     learner: &str,
 ) -> Result<Recording, TrialError> {
+    record_kept(scenario, models, seed, learner).recording
+}
+
+/// A recording, or why it could not be made, and what the learner program
+/// that steered it (if one did) wrote to its stderr.
+#[derive(Debug)]
+pub struct RecordRun {
+    /// The recording, or why it could not be made.
+    pub recording: Result<Recording, TrialError>,
+    /// The steering twin's whole stderr, if it was a learner program.
+    pub stderr: Option<String>,
+}
+
+/// [`record_for`], keeping what a steering learner program wrote to its
+/// stderr, so that a trial it failed keeps it.
+pub fn record_kept(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+    learner: &str,
+) -> RecordRun {
+    let mut twin = None;
+    let recording = record_steering(scenario, models, seed, learner, &mut twin);
+    RecordRun {
+        recording,
+        stderr: twin.and_then(learners::Built::end),
+    }
+}
+
+/// [`record_for`], leaving the steering twin (if any) in `twin`.
+fn record_steering(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    seed: u64,
+    learner: &str,
+    twin: &mut Option<learners::Built>,
+) -> Result<Recording, TrialError> {
     let config = trial_config(scenario, models, seed)?;
     let world = world_for(scenario, scenario.sim, &config)?;
     if !steered(scenario) {
         return trial::record_in(world, config);
     }
-    let mut built = learners::build_kept(learner, scenario, &models.reference())
+    let built = learners::build_kept(learner, scenario, &models.reference())
         .map_err(TrialError::LearnerSetup)?;
+    let built = twin.insert(built);
     trial::record_steered(world, config, built.learner.as_mut())
 }
 
@@ -182,7 +220,7 @@ pub fn learn_kept(
     judge_every_s: f64,
 ) -> LearnerRun {
     let reference = models.reference();
-    let built = match learners::build_kept(name, scenario, &reference) {
+    let mut built = match learners::build_kept(name, scenario, &reference) {
         Ok(b) => b,
         Err(e) => {
             return LearnerRun {
@@ -191,22 +229,16 @@ pub fn learn_kept(
             };
         }
     };
-    let learners::Built {
-        mut learner,
-        stderr,
-    } = built;
     let outcome = learn_built(
         scenario,
         recording,
-        learner.as_mut(),
+        built.learner.as_mut(),
         &reference,
         judge_every_s,
     );
-    // Ended first, so that its last words are in.
-    drop(learner);
     LearnerRun {
         outcome,
-        stderr: stderr.and_then(|s| s.lock().ok().map(|l| l.text())),
+        stderr: built.end(),
     }
 }
 
@@ -285,14 +317,15 @@ pub fn run_trials(
     seeds
         .par_iter()
         .map(|&seed| {
-            let recording = match record(scenario, models, seed) {
+            let made = record_kept(scenario, models, seed, &scenario.learner_name);
+            let recording = match made.recording {
                 Ok(r) => r,
                 Err(e) => {
                     done(&TrialRecord {
                         seed,
                         recording: None,
                         outcome: Err(&e),
-                        stderr: None,
+                        stderr: made.stderr.as_deref(),
                     });
                     return (seed, Err(e));
                 }

@@ -48,6 +48,16 @@ pub struct Built {
     pub stderr: Option<exec::child::SharedStderr>,
 }
 
+impl Built {
+    /// Ends the learner (a program first, so that its last words are in)
+    /// and returns its whole stderr (`None` for a Rust learner).
+    pub fn end(self) -> Option<String> {
+        let Self { learner, stderr } = self;
+        drop(learner);
+        stderr.and_then(|s| s.lock().ok().map(|l| l.text()))
+    }
+}
+
 impl std::fmt::Debug for Built {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Built")
