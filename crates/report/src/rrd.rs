@@ -30,7 +30,7 @@ use testbed::experiment::{self, RecordedTrial};
 use testbed::metrics;
 use testbed::reference::{Judgement, MeasuredModels, Reference};
 use testbed::scenario::Scenario;
-use testbed::trial::{self, FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
+use testbed::trial::{FrameRecord, Recording, TraceRow, TrialError, TrialRunner};
 
 use crate::ReportError;
 use crate::paper::{action_chart, sensor_chart};
@@ -514,24 +514,15 @@ pub fn log_trial(
     let outcome = experiment::learn_every(scenario, models, &recording, learner, MODELS_EVERY_S)?;
     let config = experiment::trial_config(scenario, models, seed)?;
     let mut runner = TrialRunner::new(&scenario.description, scenario.sim, config)?;
-    let mut steering = if experiment::steered(scenario) {
-        let reference = models.reference();
-        Some(
-            testbed::learners::build(learner, scenario, &reference)
-                .map_err(TrialError::LearnerSetup)?,
-        )
-    } else {
-        None
-    };
+    let mut twin = experiment::steering_twin(scenario, models, learner)?;
     let mut judgements = outcome.over_time.iter().peekable();
     for (k, (recorded, row)) in recording.frames.iter().zip(&outcome.trace).enumerate() {
-        let frame = runner.step_frame()?;
+        let frame = match twin.as_mut() {
+            Some(twin) => runner.step_frame_steered(twin.learner.as_mut())?,
+            None => runner.step_frame()?,
+        };
         if frame != *recorded {
             return Err(RrdError::NotReproduced { seed, frame: k });
-        }
-        if let Some(steering) = steering.as_mut() {
-            trial::feed_checked(steering.as_mut(), &frame)?;
-            runner.consult(&frame, steering.as_ref());
         }
         log.world_frame(runner.sim(), &frame)?;
         while let Some(j) = judgements.next_if(|j| j.t_s <= row.t_s) {

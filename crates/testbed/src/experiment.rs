@@ -170,13 +170,27 @@ fn record_steering(
 ) -> Result<Recording, TrialError> {
     let config = trial_config(scenario, models, seed)?;
     let world = world_for(scenario, scenario.sim, &config)?;
-    if !steered(scenario) {
-        return trial::record_in(world, config);
+    *twin = steering_twin(scenario, models, learner)?;
+    match twin {
+        Some(built) => trial::record_steered(world, config, built.learner.as_mut()),
+        None => trial::record_in(world, config),
     }
-    let built = learners::build_kept(learner, scenario, &models.reference())
-        .map_err(TrialError::LearnerSetup)?;
-    let built = twin.insert(built);
-    trial::record_steered(world, config, built.learner.as_mut())
+}
+
+/// The twin of `learner` that a behaviour steering by the learner's models
+/// consults while the robot walks (built as the run's own will be), or
+/// `None` if `scenario`'s behaviour does not steer.
+pub fn steering_twin(
+    scenario: &Scenario,
+    models: &MeasuredModels,
+    learner: &str,
+) -> Result<Option<learners::Built>, TrialError> {
+    if !steered(scenario) {
+        return Ok(None);
+    }
+    learners::build_kept(learner, scenario, &models.reference())
+        .map(Some)
+        .map_err(TrialError::LearnerSetup)
 }
 
 /// Runs learner `name` (set up for `scenario`) over a recording, judged

@@ -179,9 +179,9 @@ impl Recording {
 }
 
 /// A trial in progress: a world ([`World`]) and the training behaviour
-/// that drives it. It knows nothing of learners ([`TrialRunner::consult`]
-/// shows one to a behaviour that steers by it); [`feed`] gives its frames
-/// to any number of them.
+/// that drives it. It knows nothing of learners
+/// ([`TrialRunner::step_frame_steered`] shows one to a behaviour that
+/// steers by it); [`feed`] gives its frames to any number of them.
 #[derive(Debug)]
 pub struct TrialRunner<W: World = RapierWorld> {
     config: TrialConfig,
@@ -286,11 +286,24 @@ impl<W: World> TrialRunner<W> {
         })
     }
 
-    /// Shows the behaviour `learner` once it has been fed `frame` (for a
-    /// behaviour that steers by the learner's models, see
-    /// [`record_steered`]).
-    pub fn consult(&mut self, frame: &FrameRecord, learner: &dyn CalibrationLearner) {
+    /// [`step_frame`](Self::step_frame) with `learner` in the loop (for a
+    /// behaviour that steers by the learner's models): the frame, then the
+    /// learner fed it ([`feed_checked`]; a failure is the trial's, at that
+    /// frame), then the behaviour shown the learner
+    /// ([`Behaviour::consult`]).
+    pub fn step_frame_steered(
+        &mut self,
+        learner: &mut dyn CalibrationLearner,
+    ) -> Result<FrameRecord, TrialError> {
+        let index = self.frame as usize;
+        let frame = self.step_frame()?;
+        feed_checked(learner, &frame).map_err(|e| TrialError::At {
+            frame: index,
+            t_s: frame.end_s(),
+            source: Box::new(e),
+        })?;
         self.behaviour.consult(frame.end_s(), learner);
+        Ok(frame)
     }
 
     /// Runs frames until the trial's time is up or `stop` says so (it sees the
@@ -320,8 +333,7 @@ pub fn record_in(world: impl World, config: TrialConfig) -> Result<Recording, Tr
 
 /// Records a whole trial in `world` (built for `config`) whose behaviour
 /// steers by `learner`'s models: after each frame the learner is fed it
-/// ([`feed_checked`]) and the behaviour sees the learner
-/// ([`Behaviour::consult`]). The recording is the world's frames, as any;
+/// ([`TrialRunner::step_frame_steered`]). The recording is the world's frames, as any;
 /// the same learner fed them again learns the same, so a run judges a fresh
 /// one over it like any recording. Its realtime factor counts the
 /// learner's time too.
@@ -335,15 +347,7 @@ pub fn record_steered(
     let mut runner = TrialRunner::in_world(world, config)?;
     let mut frames = Vec::with_capacity(runner.total_frames().min(1 << 16) as usize);
     while !runner.finished() {
-        let frame = runner.step_frame()?;
-        let at = |e: TrialError| TrialError::At {
-            frame: frames.len(),
-            t_s: frame.end_s(),
-            source: Box::new(e),
-        };
-        feed_checked(learner, &frame).map_err(at)?;
-        runner.consult(&frame, learner);
-        frames.push(frame);
+        frames.push(runner.step_frame_steered(learner)?);
     }
     Ok(Recording::timed(seed, frames, started))
 }

@@ -157,7 +157,8 @@ impl Explorer {
         }
     }
 
-    /// The magnitude (up to `config.max_command`) to hold next in `phase`, with `current` the command in force until now.
+    /// The magnitude (up to `config.max_command`) to hold next in `phase`,
+    /// with `current` the command in force until now.
     pub fn choose(&self, phase: Phase, current: f64, config: &BehaviourConfig) -> f64 {
         let max = config.max_command;
         let sign = match phase {
