@@ -1,13 +1,18 @@
-//! A learner that says how sure it is, checked against the truth: in the
-//! synthetic world (a known response and camera, Gaussian reading noise), the
-//! batch learner's predicted 90 % bands must hold the measured error in most
+//! Learners that say how sure they are, checked against the truth: in the
+//! synthetic world (a known response and camera, Gaussian reading noise), a
+//! learner's predicted 90 % bands must hold the measured error in most
 //! trials, be about as wide as the errors are (a band that holds everything
 //! by being huge is no prediction), and be the same for the same events.
+//! Both the batch learner, whose posterior is around its own models, and
+//! the default online learner, `scasm`, whose posterior is the lagged
+//! likelihood's around the likeliest models, not its own.
 
 use rayon::prelude::*;
 use scasm::{BatchMl, BatchMlConfig, CalibrationLearner};
+use testbed::learners::{self, BoxedLearner};
 use testbed::predicted::{DRAWS, Predicted};
 use testbed::reference::Reference;
+use testbed::scenario::Scenario;
 use testbed::synthetic::{self, SyntheticTrialConfig};
 
 const SEEDS: std::ops::Range<u64> = 0..24;
@@ -16,25 +21,27 @@ const SEEDS: std::ops::Range<u64> = 0..24;
 /// `(measured error, (low, median, high))`.
 type Trial = [(f64, (f64, f64, f64)); 2];
 
-fn trial(seed: u64) -> Trial {
-    let params = BatchMlConfig::lagged().validate().expect("valid");
-    let mut learner = BatchMl::new(params);
-    let judged = synthetic::run_trial(&mut learner, &SyntheticTrialConfig::default(), seed)
+fn reference() -> Reference {
+    Reference {
+        action: synthetic::measured_action(),
+        sensor: synthetic::measured_sensor(),
+        changes: Vec::new(),
+    }
+}
+
+/// `learner`'s synthetic trial of `seed`: its errors and predicted bands.
+fn trial(learner: &mut dyn CalibrationLearner, seed: u64) -> Trial {
+    let judged = synthetic::run_trial(learner, &SyntheticTrialConfig::default(), seed)
         .expect("valid events");
-    let posterior = learner.posterior(DRAWS).expect("a posterior after a solve");
+    let posterior = learner.posterior(DRAWS).expect("a posterior at the end");
     assert_eq!(posterior.draws.len(), DRAWS, "seed {seed}");
     assert_eq!(
         Some(&posterior),
         learner.posterior(DRAWS).as_ref(),
         "seed {seed}"
     );
-    let reference = Reference {
-        action: synthetic::measured_action(),
-        sensor: synthetic::measured_sensor(),
-        changes: Vec::new(),
-    };
     let p = Predicted::of(
-        &reference,
+        &reference(),
         150.0,
         learner.action_model(),
         learner.sensor_model(),
@@ -56,9 +63,9 @@ fn trial(seed: u64) -> Trial {
     ]
 }
 
-#[test]
-fn the_batch_learners_bands_hold_its_errors_and_are_as_wide_as_they_are() {
-    let trials: Vec<Trial> = SEEDS.into_par_iter().map(trial).collect();
+/// The bands hold at least two thirds of the measured errors, and the
+/// median trial's predicted error is within 0.6-1.6 of its measured one.
+fn assert_bands_hold(learner: &str, trials: &[Trial]) {
     for (k, model) in ["action", "sensor"].iter().enumerate() {
         let inside = trials
             .iter()
@@ -68,17 +75,57 @@ fn the_batch_learners_bands_hold_its_errors_and_are_as_wide_as_they_are() {
         ratio.sort_by(f64::total_cmp);
         let median = ratio[ratio.len() / 2];
         eprintln!(
-            "{model}: {inside} of {} inside; predicted over measured, median {median:.2}",
+            "{learner} {model}: {inside} of {} inside; predicted over measured, median {median:.2}",
             trials.len()
         );
         assert!(
             inside * 3 >= trials.len() * 2,
-            "{model}: only {inside} of {} measured errors inside their 90 % band",
+            "{learner} {model}: only {inside} of {} measured errors inside their 90 % band",
             trials.len()
         );
         assert!(
             (0.6..1.6).contains(&median),
-            "{model}: the predicted error is {median:.2}x the measured one (median)"
+            "{learner} {model}: the predicted error is {median:.2}x the measured one (median)"
         );
     }
+}
+
+#[test]
+fn the_batch_learners_bands_hold_its_errors_and_are_as_wide_as_they_are() {
+    let trials: Vec<Trial> = SEEDS
+        .into_par_iter()
+        .map(|seed| {
+            let params = BatchMlConfig::lagged().validate().expect("valid");
+            trial(&mut BatchMl::new(params), seed)
+        })
+        .collect();
+    assert_bands_hold("batch-ml-lag", &trials);
+}
+
+/// The default learner as a host builds it, with `settings`.
+fn scasm(settings: &[&str]) -> BoxedLearner {
+    let mut scenario = Scenario::paper().expect("scenario");
+    for s in settings {
+        scenario.set(s).expect("declared");
+    }
+    learners::build("scasm", &scenario, &reference()).expect("scasm")
+}
+
+#[test]
+fn the_default_learners_bands_hold_its_errors_and_leave_its_learning_alone() {
+    let trials: Vec<Trial> = SEEDS
+        .into_par_iter()
+        .map(|seed| trial(scasm(&[]).as_mut(), seed))
+        .collect();
+    assert_bands_hold("scasm", &trials);
+    // Without a posterior it learns the same models, and says nothing.
+    let mut with = scasm(&[]);
+    let mut without = scasm(&["learner.scasm.posterior=0"]);
+    let config = SyntheticTrialConfig::default();
+    synthetic::run_trial(with.as_mut(), &config, 0).expect("valid events");
+    synthetic::run_trial(without.as_mut(), &config, 0).expect("valid events");
+    assert!(without.posterior(DRAWS).is_none());
+    assert_eq!(with.action_model(), without.action_model());
+    assert_eq!(with.sensor_model(), without.sensor_model());
+    assert_eq!(with.x_a(), without.x_a());
 }

@@ -44,6 +44,8 @@ mod polynomial;
 mod posterior;
 mod scasm;
 pub mod self_check;
+#[cfg(feature = "std")]
+mod variants;
 mod wls;
 
 /// Most regressors one fit can have: a sensor model of degree up to this, an
@@ -51,7 +53,7 @@ mod wls;
 pub const MAX_REGRESSORS: usize = 8;
 
 #[cfg(feature = "std")]
-pub use batch::{BATCH_ML, BATCH_ML_LAG, BatchMl, BatchMlConfig, BatchMlParams};
+pub use batch::{BATCH_ML, BATCH_ML_LAG, BatchMl, BatchMlConfig, BatchMlParams, Believed};
 pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};
@@ -60,9 +62,9 @@ pub use polynomial::{MAX_COEFFS, Polynomial};
 #[cfg(feature = "std")]
 pub use posterior::{Draw, Posterior};
 pub use scasm::Scasm;
-#[cfg(feature = "std")]
-pub use scasm::declarations::{SCASM, SCASM_EIV, SCASM_PAPER};
 pub use self_check::SelfCheck;
+#[cfg(feature = "std")]
+pub use variants::{SCASM, SCASM_EIV, SCASM_PAPER};
 
 #[cfg(test)]
 mod proptests;

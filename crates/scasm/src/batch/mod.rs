@@ -62,6 +62,7 @@
 //! too.
 
 mod belief;
+mod believed;
 mod config;
 mod frames;
 mod frozen;
@@ -86,6 +87,7 @@ use crate::polynomial::Polynomial;
 use crate::posterior::Posterior;
 use crate::scasm::Scasm;
 
+pub use believed::Believed;
 pub use config::{BatchMlConfig, BatchMlParams};
 
 /// How much longer a trial past the window has grown since the last solve
@@ -428,6 +430,19 @@ impl CalibrationLearner for BatchMl {
     }
 
     fn posterior(&self, draws: usize) -> Option<Posterior> {
+        self.posterior_in_units_of(draws, None)
+    }
+}
+
+impl BatchMl {
+    /// The posterior's draws, in the units of `path` (a location at each
+    /// frame boundary, the first at time 0) if one is given: the affine
+    /// map that best takes the solved path onto it (see [`units_map`]).
+    pub(crate) fn posterior_in_units_of(
+        &self,
+        draws: usize,
+        path: Option<&[f64]>,
+    ) -> Option<Posterior> {
         // Only the models of a solve have one (not the online learner's,
         // reported before the first). The truth is believed to be the
         // richest model the learner takes, fitted to the whole trial from
@@ -443,8 +458,16 @@ impl CalibrationLearner for BatchMl {
         };
         let start = self.solved.as_ref()?.extended(&self.frames);
         let solved = solve(&self.frames, &richer, &start, 0, true)?;
-        Some(Posterior {
-            draws: solved.belief?.draws(draws),
-        })
+        let mut draws = solved.belief?.draws(draws);
+        if let Some(path) = path {
+            let (scale, offset) = units_map(&start.path, path)?;
+            for d in &mut draws {
+                d.action = d.action.rescaled(scale, 0.0);
+                for (_, x) in &mut d.sensor {
+                    *x = scale * *x + offset;
+                }
+            }
+        }
+        Some(Posterior { draws })
     }
 }
