@@ -119,7 +119,7 @@ fn the_default_learners_bands_hold_its_errors_and_leave_its_learning_alone() {
         .collect();
     assert_bands_hold("scasm", &trials);
     // Without a posterior it learns the same models, and says nothing.
-    let mut with = scasm(&[]);
+    let mut with = scasm(&["learner.scasm.keep_start=0"]);
     let mut without = scasm(&["learner.scasm.posterior=0"]);
     let config = SyntheticTrialConfig::default();
     synthetic::run_trial(with.as_mut(), &config, 0).expect("valid events");
@@ -128,4 +128,29 @@ fn the_default_learners_bands_hold_its_errors_and_leave_its_learning_alone() {
     assert_eq!(with.action_model(), without.action_model());
     assert_eq!(with.sensor_model(), without.sensor_model());
     assert_eq!(with.x_a(), without.x_a());
+}
+
+/// Keeping the start's action model is a report, not a change of
+/// learning; and where the response is curved and the trial long, the
+/// evidence is plain, so the learned model is kept in every trial.
+#[test]
+fn the_default_learner_keeps_its_learned_action_model_where_the_evidence_is_plain() {
+    let config = SyntheticTrialConfig::default();
+    SEEDS.into_par_iter().for_each(|seed| {
+        let mut keeping = scasm(&[]);
+        let mut learned = scasm(&["learner.scasm.keep_start=0"]);
+        synthetic::run_trial(keeping.as_mut(), &config, seed).expect("valid events");
+        synthetic::run_trial(learned.as_mut(), &config, seed).expect("valid events");
+        assert_eq!(
+            keeping.sensor_model(),
+            learned.sensor_model(),
+            "seed {seed}"
+        );
+        assert_eq!(keeping.x_a(), learned.x_a(), "seed {seed}");
+        assert_eq!(
+            keeping.action_model(),
+            learned.action_model(),
+            "seed {seed}"
+        );
+    });
 }

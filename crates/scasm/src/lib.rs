@@ -53,7 +53,9 @@ mod wls;
 pub const MAX_REGRESSORS: usize = 8;
 
 #[cfg(feature = "std")]
-pub use batch::{BATCH_ML, BATCH_ML_LAG, BatchMl, BatchMlConfig, BatchMlParams, Believed};
+pub use batch::{
+    BATCH_ML, BATCH_ML_LAG, BatchMl, BatchMlConfig, BatchMlParams, Believed, KeepStart,
+};
 pub use config::{MAX_SENSOR_WINDOW, ScasmConfig, ScasmParams, SensorFit};
 pub use error::{ConfigError, EventError};
 pub use learner::{CalibrationLearner, Event};

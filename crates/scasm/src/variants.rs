@@ -5,7 +5,7 @@ use std::boxed::Box;
 use std::string::ToString;
 use std::vec::Vec;
 
-use crate::batch::Believed;
+use crate::batch::{Believed, KeepStart};
 use crate::config::{ScasmConfig, SensorFit};
 use crate::declaration::{BoxedLearner, BuildContext, Declaration, Kind, Setting};
 use crate::mode::Mode;
@@ -48,6 +48,23 @@ fn checked_settings() -> Vec<Setting> {
             "how long models must pass the self-check before they are the ones fallen back to, s",
         ),
         Setting::new(
+            "keep_start",
+            Kind::Count,
+            1.0,
+            (0.0, false, 1.0),
+            "1 (with posterior 1): every keep_start_every_s, report the start's action model (a \
+             line through the origin, in the learner's units) while fewer than half its \
+             posterior's draws find the learned one nearer the truth over the command range; 0: \
+             always the learned one",
+        ),
+        Setting::new(
+            "keep_start_every_s",
+            Kind::Number,
+            30.0,
+            (0.0, true, f64::INFINITY),
+            "how often the keep-start decision is made (one solve of the likelihood each), s",
+        ),
+        Setting::new(
             "posterior",
             Kind::Count,
             1.0,
@@ -70,7 +87,10 @@ fn build_checked(
     let learner = scasm(config, c.mode, check)?;
     Ok(
         if c.own.count("posterior") == 1 && c.mode == Mode::Simultaneous {
-            Box::new(Believed::new(learner))
+            let keep = (c.own.count("keep_start") == 1).then(|| KeepStart {
+                every_s: c.own.get("keep_start_every_s"),
+            });
+            Box::new(Believed::new(learner, keep))
         } else {
             Box::new(learner)
         },

@@ -43,6 +43,14 @@ pub fn action_error(model: &Polynomial, measured: &[(f64, f64)]) -> ScaledError 
     ScaledError { scale, rmse }
 }
 
+/// Whether error `a` is above error `b` by more than rounding: a model the
+/// metric cannot tell from another (the start's line at another scale, to
+/// which it is blind) has the other's error up to the last bits of the
+/// sums, and is neither worse nor better than it.
+pub fn above(a: f64, b: f64) -> bool {
+    a > b * (1.0 + 1e-9)
+}
+
 /// Sensor error: `model` against measured `(distance, obs)` pairs.
 pub fn sensor_error(model: &Polynomial, measured: &[(f64, f64)]) -> AffineError {
     let s: Vec<f64> = measured.iter().map(|&(_, o)| model.eval(o)).collect();

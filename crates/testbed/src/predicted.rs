@@ -157,7 +157,7 @@ impl Model {
             return (band, None, None);
         };
         let start_band = Band::of(pairs.iter().map(|p| p.1).collect());
-        let wins = pairs.iter().filter(|(l, s)| l < s).count();
+        let wins = pairs.iter().filter(|(l, s)| metrics::above(*s, *l)).count();
         let share = wins as f64 / posterior.draws.len().max(1) as f64;
         (band, start_band, Some(share))
     }

@@ -1,17 +1,26 @@
-//! An online learner that knows how sure it is. It reports its own models,
-//! learned online as ever; what it believes the robot's true responses could
-//! be, given every event it has seen, is the likelihood's (`batch-ml-lag`'s
-//! model: the path, a lagged response to each command and a forward sensor
-//! model, with the process and reading noises), by the Laplace approximation
-//! at its maximum, solved once, when a host asks. The posterior over the
-//! truth depends on the data and the model of them, not on which estimate
-//! is reported: judging the online models against its draws counts both
-//! the noise and how far the online estimate is from the likeliest one.
+//! An online learner that knows how sure it is. It learns online as ever;
+//! what it believes the robot's true responses could be, given every event
+//! it has seen, is the likelihood's (`batch-ml-lag`'s model: the path, a
+//! lagged response to each command and a forward sensor model, with the
+//! process and reading noises), by the Laplace approximation at its
+//! maximum. The posterior over the truth depends on the data and the model
+//! of them, not on which estimate is reported: judging the online models
+//! against its draws counts both the noise and how far the online estimate
+//! is from the likeliest one.
 //!
-//! The likelihood's solve starts from the online learner's own path and
-//! models (and the readings' pinhole path), and its solution is put in the
-//! online learner's units (the affine map that best takes its path onto the
-//! online path), so that the draws are in the units of the models reported.
+//! The likelihood's solve starts from its own online learner's path and
+//! models (and the readings' pinhole path), and its draws are put in the
+//! online learner's units (the affine map that best takes the solved path
+//! onto the learner's dead-reckoned path), the units of the models reported.
+//!
+//! With `keep_start`, it also moves its action model off its start only as
+//! far as that belief supports: every `every_s` of the trial it solves the
+//! likelihood and asks its draws whether the learned action model is nearer
+//! the truth than the start's (A0, the command taken as the speed: a line
+//! through the origin) over the commands it walks; while fewer than half
+//! the draws say so, it reports that line (in its units: the scale that
+//! best fits its learned model) in place of the learned model. Its own
+//! learning, dead reckoning and sensor model are untouched.
 
 use std::vec;
 use std::vec::Vec;
@@ -21,39 +30,76 @@ use crate::config::{ScasmConfig, SensorFit};
 use crate::error::EventError;
 use crate::learner::{CalibrationLearner, Event};
 use crate::polynomial::Polynomial;
-use crate::posterior::Posterior;
+use crate::posterior::{Draw, Posterior};
 use crate::scasm::Scasm;
+
+/// Commands, evenly over the learner's command range, at which a draw
+/// judges the learned action model against the start's (as many as the
+/// paper's stopwatch commands).
+const JUDGED_COMMANDS: usize = 31;
+
+/// Draws a keep-start decision is made from.
+const DECISION_DRAWS: usize = 200;
+
+/// When an online learner keeps its start's action model (see the module's
+/// documentation).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KeepStart {
+    /// How often the belief is solved for the decision, s of the trial.
+    pub every_s: f64,
+}
 
 /// An online SCASM learner with the lagged likelihood's posterior (see the
 /// module's documentation).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Believed {
     learner: Scasm,
-    /// Every event the learner took, in order, for the likelihood.
-    events: Vec<Event>,
+    /// The likelihood, fed every event the learner took; solved only when
+    /// a belief is due.
+    batch: BatchMl,
     /// The learner's dead-reckoned location at each frame boundary (the
     /// first at time 0): its units, which the posterior's draws are put in.
     path: Vec<f64>,
-    /// The likelihood's settings: `batch-ml-lag`'s, with the online
-    /// learner's own as its start and units.
-    likelihood: BatchMlConfig,
+    keep_start: Option<KeepStart>,
+    /// When the next keep-start decision is due, s.
+    next_decision_s: f64,
+    /// Whether the last decision kept the start's action model.
+    keeping: bool,
+    /// Whether the likelihood refused an event the learner took (it checks
+    /// events alike, so never expected): then it has no belief.
+    lost: bool,
+    /// How many frame boundaries the likelihood was last solved over.
+    solved_over: usize,
 }
 
 impl Believed {
     /// `learner` (simultaneous), its posterior that of `batch-ml-lag`'s
-    /// likelihood started from a learner with its settings.
-    pub fn new(learner: Scasm) -> Self {
-        Self {
-            likelihood: BatchMlConfig {
-                online: ScasmConfig {
-                    sensor_fit: SensorFit::Corrected,
-                    ..learner.params().config()
-                },
-                ..BatchMlConfig::lagged()
+    /// likelihood started from a learner with its settings, keeping its
+    /// start's action model as `keep_start` says (`None`: never).
+    pub fn new(learner: Scasm, keep_start: Option<KeepStart>) -> Self {
+        let likelihood = BatchMlConfig {
+            online: ScasmConfig {
+                sensor_fit: SensorFit::Corrected,
+                ..learner.params().config()
             },
+            // Solved when a belief is due, never on its own.
+            solve_every_s: f64::MAX,
+            ..BatchMlConfig::lagged()
+        };
+        let batch = BatchMl::new(
+            likelihood
+                .validate()
+                .expect("batch-ml-lag's defaults with a valid learner's settings"),
+        );
+        Self {
             learner,
-            events: Vec::new(),
+            batch,
             path: vec![0.0],
+            next_decision_s: keep_start.map_or(f64::INFINITY, |k| k.every_s),
+            keep_start,
+            keeping: false,
+            lost: false,
+            solved_over: 0,
         }
     }
 
@@ -61,6 +107,85 @@ impl Believed {
     pub fn learner(&self) -> &Scasm {
         &self.learner
     }
+
+    /// Whether it reports its start's action model now, in place of its own.
+    pub fn keeping_start(&self) -> bool {
+        self.keeping
+    }
+
+    /// Draws of the likelihood's posterior over the events so far, from
+    /// `batch` solved over them (solved now unless `solved` says it was
+    /// already), in the units of the learner's `path`.
+    fn draws(batch: &mut BatchMl, solved: bool, draws: usize, path: &[f64]) -> Option<Vec<Draw>> {
+        if !solved {
+            batch.solve_now();
+        }
+        batch
+            .posterior_in_units_of(draws, Some(path))
+            .map(|p| p.draws)
+    }
+
+    /// Decides, from a fresh belief, whether to keep the start's action
+    /// model: while fewer than half the draws find the learned model nearer
+    /// them than the start's line.
+    fn decide(&mut self) {
+        let Some(learned) = self.learner.action_model().filter(|_| !self.lost) else {
+            self.keeping = false;
+            return;
+        };
+        self.solved_over = self.path.len();
+        let Some(draws) = Self::draws(&mut self.batch, false, DECISION_DRAWS, &self.path) else {
+            return;
+        };
+        let scale = self.learner.params().command_scale();
+        self.keeping = better_share(&learned, &draws, scale).is_some_and(|share| share < 0.5);
+    }
+}
+
+/// `JUDGED_COMMANDS` commands evenly over `±scale`.
+fn commands(scale: f64) -> impl Iterator<Item = f64> {
+    (0..JUDGED_COMMANDS).map(move |i| scale * (2.0 * i as f64 / (JUDGED_COMMANDS - 1) as f64 - 1.0))
+}
+
+/// The share of `draws` by which `learned` is nearer the truth than the
+/// start's line over the commands `±scale`, by the paper's action error;
+/// `None` without draws.
+fn better_share(learned: &Polynomial, draws: &[Draw], scale: f64) -> Option<f64> {
+    let commands: Vec<f64> = commands(scale).collect();
+    let line = Polynomial::identity();
+    let better = draws
+        .iter()
+        .filter(|d| {
+            scaled_error(learned, &d.action, &commands) < scaled_error(&line, &d.action, &commands)
+        })
+        .count();
+    (!draws.is_empty()).then(|| better as f64 / draws.len() as f64)
+}
+
+/// The paper's action error of `model` against `truth` at `commands`: the
+/// RMS difference after the scale that best fits `model` to `truth`.
+fn scaled_error(model: &Polynomial, truth: &Polynomial, commands: &[f64]) -> f64 {
+    let (tm, mm) = commands.iter().fold((0.0, 0.0), |(tm, mm), &c| {
+        let (t, m) = (truth.eval(c), model.eval(c));
+        (tm + t * m, mm + m * m)
+    });
+    let k = if mm > 0.0 { tm / mm } else { 0.0 };
+    let ss: f64 = commands
+        .iter()
+        .map(|&c| (k * model.eval(c) - truth.eval(c)).powi(2))
+        .sum();
+    libm::sqrt(ss / commands.len() as f64)
+}
+
+/// The line through the origin nearest `model` over `±scale` (its scale
+/// fitted at evenly spaced commands).
+fn line_of(model: &Polynomial, scale: f64) -> Option<Polynomial> {
+    let (cm, cc) = commands(scale).fold((0.0, 0.0), |(cm, cc), c| {
+        (cm + c * model.eval(c), cc + c * c)
+    });
+    (cc > 0.0)
+        .then(|| Polynomial::new(&[0.0, cm / cc]))
+        .flatten()
 }
 
 impl CalibrationLearner for Believed {
@@ -70,13 +195,24 @@ impl CalibrationLearner for Believed {
 
     fn handle(&mut self, event: Event) -> Result<(), EventError> {
         self.learner.handle(event)?;
-        self.events.push(event);
+        // The learner took it; the batch learner's online learner checks
+        // events alike, but should it not, the belief is no longer of the
+        // events taken.
+        self.lost |= self.batch.handle(event).is_err();
         let x = self.learner.x_a().unwrap_or(0.0);
         match event {
             Event::Command { .. } => self.path.push(x),
-            Event::Reading { .. } => {
+            Event::Reading { t_s, .. } => {
                 if let Some(last) = self.path.last_mut() {
                     *last = x;
+                }
+                if let Some(k) = self.keep_start
+                    && t_s >= self.next_decision_s - 1e-9
+                {
+                    while self.next_decision_s <= t_s + 1e-9 {
+                        self.next_decision_s += k.every_s;
+                    }
+                    self.decide();
                 }
             }
         }
@@ -84,7 +220,12 @@ impl CalibrationLearner for Believed {
     }
 
     fn action_model(&self) -> Option<Polynomial> {
-        self.learner.action_model()
+        let learned = self.learner.action_model()?;
+        if self.keeping {
+            line_of(&learned, self.learner.params().command_scale())
+        } else {
+            Some(learned)
+        }
     }
 
     fn sensor_model(&self) -> Option<Polynomial> {
@@ -104,27 +245,68 @@ impl CalibrationLearner for Believed {
     }
 
     fn posterior(&self, draws: usize) -> Option<Posterior> {
-        // One solve, at the last reading: the events so far are the trial.
-        let end_s = self.events.iter().rev().find_map(|e| match e {
-            Event::Reading { t_s, .. } => Some(*t_s),
-            Event::Command { .. } => None,
-        })?;
-        // Solving every 10 s of the trial, as `batch-ml-lag` does, gave the
-        // same bands to within 4 % (ERS-7, development seeds 100-129) at
-        // seven times the cost: the posterior's own solve, of a richer
-        // action model, starts from the solution either way.
-        let params = BatchMlConfig {
-            solve_every_s: end_s,
-            ..self.likelihood
+        if self.lost {
+            return None;
         }
-        .validate()
-        .ok()?;
-        let mut batch = BatchMl::new(params);
-        for event in &self.events {
-            // The learner took each of them; the batch learner's online
-            // learner checks events alike.
-            batch.handle(*event).ok()?;
+        // A decision at the last reading has solved over every event.
+        let solved = self.solved_over == self.path.len();
+        let draws = Self::draws(&mut self.batch.clone(), solved, draws, &self.path)?;
+        Some(Posterior { draws })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(c: &[f64]) -> Polynomial {
+        Polynomial::new(c).expect("finite")
+    }
+
+    fn draw(action: Polynomial) -> Draw {
+        Draw {
+            action,
+            sensor: vec![(10.0, 2.0), (20.0, 1.0)],
         }
-        batch.posterior_in_units_of(draws, Some(&self.path))
+    }
+
+    #[test]
+    fn the_action_error_is_the_papers_blind_to_scale() {
+        let commands: Vec<f64> = commands(300.0).collect();
+        let truth = poly(&[0.0, 0.8, 0.0, -2e-6]);
+        assert!(scaled_error(&truth, &truth, &commands) < 1e-12);
+        let twice = truth.rescaled(2.0, 0.0);
+        assert!(scaled_error(&twice, &truth, &commands) < 1e-9);
+        assert!(scaled_error(&Polynomial::identity(), &truth, &commands) > 1.0);
+    }
+
+    #[test]
+    fn the_start_is_kept_only_where_the_draws_do_not_favour_the_learned_model() {
+        let scale = 300.0;
+        let curved = poly(&[0.0, 0.8, 0.0, -2e-6]);
+        let learned = poly(&[0.0, 0.8, 1e-5, -2e-6]);
+        // Draws of a curved truth favour the curved model learned.
+        let draws: Vec<Draw> = (0..10)
+            .map(|k| draw(curved.rescaled(1.0 + 0.01 * f64::from(k), 0.0)))
+            .collect();
+        assert_eq!(better_share(&learned, &draws, scale), Some(1.0));
+        // Draws of a straight one favour the start's line.
+        let lines: Vec<Draw> = (0..10)
+            .map(|k| draw(poly(&[0.0, 0.7 + 0.01 * f64::from(k)])))
+            .collect();
+        assert_eq!(better_share(&learned, &lines, scale), Some(0.0));
+        assert_eq!(better_share(&learned, &[], scale), None);
+    }
+
+    #[test]
+    fn the_line_kept_is_the_learned_models_own_scale() {
+        let line = line_of(&poly(&[0.0, 0.8, 0.0, -2e-6]), 300.0).expect("a line");
+        assert_eq!(line.degree(), 1);
+        assert!(line.eval(0.0).abs() < 1e-12);
+        // The same line fitted to itself.
+        let again = line_of(&line, 300.0).expect("a line");
+        assert!((again.eval(300.0) - line.eval(300.0)).abs() < 1e-9);
+        // Near the learned model's slope over the range (0.8, less its cubic's pull).
+        assert!((0.6..0.8).contains(&(line.eval(1.0))));
     }
 }

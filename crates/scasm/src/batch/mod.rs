@@ -87,7 +87,7 @@ use crate::polynomial::Polynomial;
 use crate::posterior::Posterior;
 use crate::scasm::Scasm;
 
-pub use believed::Believed;
+pub use believed::{Believed, KeepStart};
 pub use config::{BatchMlConfig, BatchMlParams};
 
 /// How much longer a trial past the window has grown since the last solve

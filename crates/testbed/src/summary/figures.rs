@@ -395,13 +395,13 @@ impl Figures {
 
     /// Whether the learned action model ends worse than A0.
     pub fn action_worse_than_start(&self) -> bool {
-        self.action_rmse_mm_s > self.action_a0_rmse_mm_s
+        metrics::above(self.action_rmse_mm_s, self.action_a0_rmse_mm_s)
     }
 
     /// Whether the learned sensor model ends worse than the one learned
     /// from A0 on the same frames.
     pub fn sensor_worse_than_start(&self) -> bool {
-        self.sensor_rmse_mm > self.sensor_start_rmse_mm
+        metrics::above(self.sensor_rmse_mm, self.sensor_start_rmse_mm)
     }
 
     /// `rest` with the recovery figures of the trial's first change of the
@@ -567,5 +567,8 @@ mod tests {
         assert!(!f(10.0, 50.0).worse_than_start());
         assert!(f(30.0, 50.0).worse_than_start());
         assert!(f(10.0, 400.0).worse_than_start());
+        // The start's error up to the last bits of the sums is the start's.
+        assert!(!f(25.0 * (1.0 + 4.0 * f64::EPSILON), 50.0).worse_than_start());
+        assert!(f(25.001, 50.0).worse_than_start());
     }
 }
