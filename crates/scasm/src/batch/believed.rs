@@ -103,16 +103,6 @@ impl Believed {
         }
     }
 
-    /// The online learner.
-    pub fn learner(&self) -> &Scasm {
-        &self.learner
-    }
-
-    /// Whether it reports its start's action model now, in place of its own.
-    pub fn keeping_start(&self) -> bool {
-        self.keeping
-    }
-
     /// Draws of the likelihood's posterior over the events so far, from
     /// `batch` solved over them (solved now unless `solved` says it was
     /// already), in the units of the learner's `path`.
