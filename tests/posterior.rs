@@ -8,7 +8,7 @@
 //! likelihood's around the likeliest models, not its own.
 
 use rayon::prelude::*;
-use scasm::{BatchMl, BatchMlConfig, CalibrationLearner};
+use scasm::{BatchMl, BatchMlConfig, CalibrationLearner, Mode, Polynomial, Scasm};
 use testbed::learners::{self, BoxedLearner};
 use testbed::predicted::{DRAWS, Predicted};
 use testbed::reference::Reference;
@@ -130,27 +130,57 @@ fn the_default_learners_bands_hold_its_errors_and_leave_its_learning_alone() {
     assert_eq!(with.x_a(), without.x_a());
 }
 
-/// Keeping the start's action model is a report, not a change of
-/// learning; and where the response is curved and the trial long, the
-/// evidence is plain, so the learned model is kept in every trial.
+/// Keeping a start is a report, not a change of learning; where the
+/// response is curved and the trial long, the evidence for the learned
+/// action model is plain, so it is kept in every trial; and a sensor model
+/// kept is section IV's (by the metric, the same error), kept only where
+/// the two are close (here the start is up to 2.6x the learned model's
+/// error, and 0.8x at best: a belief cannot tell a few per cent apart).
+/// By default the sensor's start is kept only on a clear verdict (this
+/// world gives none); with the action model's even odds it is kept in some.
 #[test]
-fn the_default_learner_keeps_its_learned_action_model_where_the_evidence_is_plain() {
+fn the_default_learner_keeps_a_start_only_where_it_is_nearer_the_truth() {
     let config = SyntheticTrialConfig::default();
-    SEEDS.into_par_iter().for_each(|seed| {
-        let mut keeping = scasm(&[]);
-        let mut learned = scasm(&["learner.scasm.keep_start=0"]);
-        synthetic::run_trial(keeping.as_mut(), &config, seed).expect("valid events");
-        synthetic::run_trial(learned.as_mut(), &config, seed).expect("valid events");
-        assert_eq!(
-            keeping.sensor_model(),
-            learned.sensor_model(),
-            "seed {seed}"
-        );
-        assert_eq!(keeping.x_a(), learned.x_a(), "seed {seed}");
-        assert_eq!(
-            keeping.action_model(),
-            learned.action_model(),
-            "seed {seed}"
-        );
-    });
+    let scenario = Scenario::paper().expect("scenario");
+    let params = scenario.learner.validate().expect("valid");
+    for (settings, fires) in [
+        (&[][..], false),
+        (&["learner.scasm.keep_start_sensor_below=0.5"][..], true),
+    ] {
+        let kept: Vec<bool> = SEEDS
+            .into_par_iter()
+            .map(|seed| {
+                let mut keeping = scasm(settings);
+                let mut learned = scasm(&["learner.scasm.keep_start=0"]);
+                let mut start = Scasm::new(params, Mode::SensorFromAction(Polynomial::identity()))
+                    .expect("A0 is finite");
+                let judged = synthetic::run_trial(keeping.as_mut(), &config, seed).expect("valid");
+                let own = synthetic::run_trial(learned.as_mut(), &config, seed).expect("valid");
+                let start = synthetic::run_trial(&mut start, &config, seed).expect("valid");
+                assert_eq!(keeping.x_a(), learned.x_a(), "seed {seed}");
+                assert_eq!(
+                    keeping.action_model(),
+                    learned.action_model(),
+                    "seed {seed}"
+                );
+                let error =
+                    |j: &synthetic::SyntheticOutcome| j.sensor_error.expect("a sensor model").rmse;
+                let (error, own, start) = (error(&judged), error(&own), error(&start));
+                let kept = keeping.sensor_model() != learned.sensor_model();
+                if kept {
+                    assert!(
+                        (error - start).abs() <= 1e-9 * start,
+                        "seed {seed}: {error} {start}"
+                    );
+                    assert!(start < 1.2 * own, "seed {seed}: kept {start} over {own}");
+                } else {
+                    assert_eq!(error, own, "seed {seed}");
+                }
+                kept
+            })
+            .collect();
+        // Not a rule that never fires: with even odds the start is kept in
+        // a few trials (where it is within 1.2x of the learned model).
+        assert!(!fires || kept.iter().any(|&k| k), "{settings:?}: {kept:?}");
+    }
 }

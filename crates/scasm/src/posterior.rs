@@ -27,3 +27,44 @@ pub struct Draw {
     /// extends the end segments).
     pub sensor: Vec<(f64, f64)>,
 }
+
+impl Draw {
+    /// The location `obs_px` means by this draw's sensor table: linear
+    /// between its points, the end segments extended; `None` if the table
+    /// has fewer than two points or is degenerate there.
+    pub fn location_at(&self, obs_px: f64) -> Option<f64> {
+        let table = &self.sensor;
+        if table.len() < 2 {
+            return None;
+        }
+        let k = table
+            .partition_point(|p| p.0 <= obs_px)
+            .clamp(1, table.len() - 1);
+        let ((o0, x0), (o1, x1)) = (table[k - 1], table[k]);
+        let x = x0 + (x1 - x0) / (o1 - o0) * (obs_px - o0);
+        x.is_finite().then_some(x)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_draw_reads_its_table_between_and_beyond_its_points() {
+        let draw = Draw {
+            action: Polynomial::identity(),
+            sensor: vec![(10.0, 4.0), (20.0, 2.0), (40.0, 1.0)],
+        };
+        assert_eq!(draw.location_at(15.0), Some(3.0));
+        assert_eq!(draw.location_at(30.0), Some(1.5));
+        // The end segments extended.
+        assert_eq!(draw.location_at(5.0), Some(5.0));
+        assert_eq!(draw.location_at(60.0), Some(0.0));
+        let short = Draw {
+            sensor: vec![(10.0, 4.0)],
+            ..draw
+        };
+        assert_eq!(short.location_at(10.0), None);
+    }
+}

@@ -52,10 +52,11 @@ fn checked_settings() -> Vec<Setting> {
             Kind::Count,
             1.0,
             (0.0, false, 1.0),
-            "1 (with posterior 1): every keep_start_every_s, report the start's action model (a \
-             line through the origin, in the learner's units) while fewer than half its \
-             posterior's draws find the learned one nearer the truth over the command range; 0: \
-             always the learned one",
+            "1 (with posterior 1): every keep_start_every_s, report each model's start (A0's \
+             line through the origin; section IV's sensor model, learned with A0), in the \
+             learner's units, while its posterior's draws do not favour the learned one (A \
+             over the command range, fewer than half the draws; S over the distances walked, \
+             fewer than keep_start_sensor_below of them); 0: always the learned ones",
         ),
         Setting::new(
             "keep_start_every_s",
@@ -63,6 +64,14 @@ fn checked_settings() -> Vec<Setting> {
             30.0,
             (0.0, true, f64::INFINITY),
             "how often the keep-start decision is made (one solve of the likelihood each), s",
+        ),
+        Setting::new(
+            "keep_start_sensor_below",
+            Kind::Number,
+            0.1,
+            (0.0, false, 1.0),
+            "the share of posterior draws favouring the learned sensor model below which the \
+             start's is reported (0: never; the action model's is 0.5)",
         ),
         Setting::new(
             "posterior",
@@ -89,6 +98,7 @@ fn build_checked(
         if c.own.count("posterior") == 1 && c.mode == Mode::Simultaneous {
             let keep = (c.own.count("keep_start") == 1).then(|| KeepStart {
                 every_s: c.own.get("keep_start_every_s"),
+                sensor_below: c.own.get("keep_start_sensor_below"),
             });
             Box::new(Believed::new(learner, keep))
         } else {
@@ -120,7 +130,9 @@ pub const SCASM_PAPER: Declaration = Declaration {
 pub const SCASM: Declaration = Declaration {
     name: "scasm",
     about: "SCASM with the sensor fit's readings averaged in windows (learner.sensor_window, \
-            5), falling back to its last good models while a model is not monotone",
+            5), falling back to its last good models while a model is not monotone; says how \
+            sure it is (batch-ml-lag's posterior) and keeps its start's models where that \
+            posterior does not favour the learned ones",
     shared: &[
         "gamma",
         "beta",

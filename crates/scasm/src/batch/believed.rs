@@ -13,14 +13,24 @@
 //! online learner's units (the affine map that best takes the solved path
 //! onto the learner's dead-reckoned path), the units of the models reported.
 //!
-//! With `keep_start`, it also moves its action model off its start only as
-//! far as that belief supports: every `every_s` of the trial it solves the
-//! likelihood and asks its draws whether the learned action model is nearer
-//! the truth than the start's (A0, the command taken as the speed: a line
-//! through the origin) over the commands it walks; while fewer than half
-//! the draws say so, it reports that line (in its units: the scale that
-//! best fits its learned model) in place of the learned model. Its own
-//! learning, dead reckoning and sensor model are untouched.
+//! With `keep_start`, it also moves each model off its start only as far
+//! as that belief supports: every `every_s` of the trial it solves the
+//! likelihood and asks its draws whether each learned model is nearer the
+//! truth than the start's, by the paper's metric (blind to the models'
+//! units). The action model's start is A0, the command taken as the speed (a
+//! line through the origin), judged over the commands it walks; while fewer
+//! than half the draws favour the learned model, it reports A0's line at
+//! the scale that best fits the learned one. The sensor model's start is
+//! section IV's, learned by dead reckoning with A0 (a second online learner
+//! rides along for it), judged over the distances walked (each draw's own
+//! table: evenly spaced locations over the path's range, and the readings
+//! the draw says they give); while fewer than `sensor_below` of the draws
+//! favour the learned model, it reports section IV's, by the affine map
+//! that best fits the learned one at a draw's readings. The sensor's
+//! verdict asks for more than the action's because it is blind where the
+//! sensor models differ most, beyond the ends of the walk (a walk that
+//! turns short of where its sensor model is used). Its own learning and
+//! dead reckoning are untouched.
 
 use std::vec;
 use std::vec::Vec;
@@ -29,6 +39,7 @@ use crate::batch::{BatchMl, BatchMlConfig};
 use crate::config::{ScasmConfig, SensorFit};
 use crate::error::EventError;
 use crate::learner::{CalibrationLearner, Event};
+use crate::mode::Mode;
 use crate::polynomial::Polynomial;
 use crate::posterior::{Draw, Posterior};
 use crate::scasm::Scasm;
@@ -41,12 +52,15 @@ const JUDGED_COMMANDS: usize = 31;
 /// Draws a keep-start decision is made from.
 const DECISION_DRAWS: usize = 200;
 
-/// When an online learner keeps its start's action model (see the module's
+/// When an online learner keeps its start's models (see the module's
 /// documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct KeepStart {
     /// How often the belief is solved for the decision, s of the trial.
     pub every_s: f64,
+    /// The share of draws favouring the learned sensor model below which
+    /// the start's is kept (the action model's is one half; 0: never).
+    pub sensor_below: f64,
 }
 
 /// An online SCASM learner with the lagged likelihood's posterior (see the
@@ -54,6 +68,9 @@ pub struct KeepStart {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Believed {
     learner: Scasm,
+    /// Section IV's learner: the sensor model by dead reckoning with A0, fed
+    /// the same events (the sensor model's start).
+    start: Scasm,
     /// The likelihood, fed every event the learner took; solved only when
     /// a belief is due.
     batch: BatchMl,
@@ -64,7 +81,10 @@ pub struct Believed {
     /// When the next keep-start decision is due, s.
     next_decision_s: f64,
     /// Whether the last decision kept the start's action model.
-    keeping: bool,
+    keeping_action: bool,
+    /// If the last decision kept the start's sensor model, the readings its
+    /// units are mapped to the learned model's at (a draw's).
+    keeping_sensor: Option<Vec<f64>>,
     /// Whether the likelihood refused an event the learner took (it checks
     /// events alike, so never expected): then it has no belief.
     lost: bool,
@@ -75,8 +95,13 @@ pub struct Believed {
 impl Believed {
     /// `learner` (simultaneous), its posterior that of `batch-ml-lag`'s
     /// likelihood started from a learner with its settings, keeping its
-    /// start's action model as `keep_start` says (`None`: never).
+    /// start's models as `keep_start` says (`None`: never).
     pub fn new(learner: Scasm, keep_start: Option<KeepStart>) -> Self {
+        let start = Scasm::new(
+            *learner.params(),
+            Mode::SensorFromAction(Polynomial::identity()),
+        )
+        .expect("A0 is finite");
         let likelihood = BatchMlConfig {
             online: ScasmConfig {
                 sensor_fit: SensorFit::Corrected,
@@ -93,11 +118,13 @@ impl Believed {
         );
         Self {
             learner,
+            start,
             batch,
             path: vec![0.0],
             next_decision_s: keep_start.map_or(f64::INFINITY, |k| k.every_s),
             keep_start,
-            keeping: false,
+            keeping_action: false,
+            keeping_sensor: None,
             lost: false,
             solved_over: 0,
         }
@@ -115,21 +142,76 @@ impl Believed {
             .map(|p| p.draws)
     }
 
-    /// Decides, from a fresh belief, whether to keep the start's action
-    /// model: while fewer than half the draws find the learned model nearer
-    /// them than the start's line.
+    /// Decides, from a fresh belief, whether to keep each model's start:
+    /// while fewer than half the draws find the learned model nearer them
+    /// than the start's.
     fn decide(&mut self) {
-        let Some(learned) = self.learner.action_model().filter(|_| !self.lost) else {
-            self.keeping = false;
+        let (Some(action), Some(sensor)) =
+            (self.learner.action_model(), self.learner.sensor_model())
+        else {
+            (self.keeping_action, self.keeping_sensor) = (false, None);
             return;
         };
+        if self.lost {
+            (self.keeping_action, self.keeping_sensor) = (false, None);
+            return;
+        }
         self.solved_over = self.path.len();
         let Some(draws) = Self::draws(&mut self.batch, false, DECISION_DRAWS, &self.path) else {
             return;
         };
         let scale = self.learner.params().command_scale();
-        self.keeping = better_share(&learned, &draws, scale).is_some_and(|share| share < 0.5);
+        self.keeping_action = better_share(&action, &draws, scale).is_some_and(|s| s < 0.5);
+        let below = self.keep_start.map_or(0.0, |k| k.sensor_below);
+        self.keeping_sensor = self
+            .start
+            .sensor_model()
+            .and_then(|start| sensor_better_share(&sensor, &start, &draws))
+            .is_some_and(|s| s < below)
+            .then(|| draws[0].sensor.iter().map(|&(obs, _)| obs).collect());
     }
+}
+
+/// The share of `draws` by which the sensor model `learned` is nearer the
+/// truth than `start` over the distances walked, by the paper's sensor
+/// error: each draw judges at its own table's points (evenly spaced
+/// locations over the path's range, and the readings it says they give);
+/// `None` without draws.
+fn sensor_better_share(learned: &Polynomial, start: &Polynomial, draws: &[Draw]) -> Option<f64> {
+    let better = draws
+        .iter()
+        .filter(|d| {
+            let (readings, truth): (Vec<f64>, Vec<f64>) = d.sensor.iter().copied().unzip();
+            affine_error(learned, &readings, &truth).0 < affine_error(start, &readings, &truth).0
+        })
+        .count();
+    (!draws.is_empty()).then(|| better as f64 / draws.len() as f64)
+}
+
+/// The paper's sensor error of `model` at `readings` against the locations
+/// `truth`: the RMS difference after the affine map that best fits `model`
+/// to `truth`, and that map (`(scale, offset)`).
+fn affine_error(model: &Polynomial, readings: &[f64], truth: &[f64]) -> (f64, (f64, f64)) {
+    let m: Vec<f64> = readings.iter().map(|&o| model.eval(o)).collect();
+    let n = m.len() as f64;
+    let (mean_m, mean_t) = (m.iter().sum::<f64>() / n, truth.iter().sum::<f64>() / n);
+    let (mt, mm) = m
+        .iter()
+        .zip(truth)
+        .fold((0.0, 0.0), |(mt, mm), (&mi, &ti)| {
+            (
+                mt + (mi - mean_m) * (ti - mean_t),
+                mm + (mi - mean_m).powi(2),
+            )
+        });
+    let scale = if mm > 0.0 { mt / mm } else { 0.0 };
+    let offset = mean_t - scale * mean_m;
+    let ss: f64 = m
+        .iter()
+        .zip(truth)
+        .map(|(&mi, &ti)| (offset + scale * mi - ti).powi(2))
+        .sum();
+    (libm::sqrt(ss / n), (scale, offset))
 }
 
 /// `JUDGED_COMMANDS` commands evenly over `±scale`.
@@ -188,7 +270,7 @@ impl CalibrationLearner for Believed {
         // The learner took it; the batch learner's online learner checks
         // events alike, but should it not, the belief is no longer of the
         // events taken.
-        self.lost |= self.batch.handle(event).is_err();
+        self.lost |= self.batch.handle(event).is_err() || self.start.handle(event).is_err();
         let x = self.learner.x_a().unwrap_or(0.0);
         match event {
             Event::Command { .. } => self.path.push(x),
@@ -211,7 +293,7 @@ impl CalibrationLearner for Believed {
 
     fn action_model(&self) -> Option<Polynomial> {
         let learned = self.learner.action_model()?;
-        if self.keeping {
+        if self.keeping_action {
             line_of(&learned, self.learner.params().command_scale())
         } else {
             Some(learned)
@@ -219,7 +301,14 @@ impl CalibrationLearner for Believed {
     }
 
     fn sensor_model(&self) -> Option<Polynomial> {
-        self.learner.sensor_model()
+        let learned = self.learner.sensor_model()?;
+        let start = self.keeping_sensor.as_ref().and_then(|judged| {
+            let at: Vec<f64> = judged.iter().map(|&o| learned.eval(o)).collect();
+            let start = self.start.sensor_model()?;
+            let (_, (scale, offset)) = affine_error(&start, judged, &at);
+            Some(start.rescaled(scale, offset))
+        });
+        Some(start.unwrap_or(learned))
     }
 
     fn x_a(&self) -> Option<f64> {
@@ -286,6 +375,54 @@ mod tests {
             .collect();
         assert_eq!(better_share(&learned, &lines, scale), Some(0.0));
         assert_eq!(better_share(&learned, &[], scale), None);
+    }
+
+    /// A draw whose sensor table is `truth` (a location per reading) at
+    /// readings 20..=50 px.
+    fn sensor_draw(truth: impl Fn(f64) -> f64) -> Draw {
+        Draw {
+            action: Polynomial::identity(),
+            sensor: (20..=50).map(f64::from).map(|o| (o, truth(o))).collect(),
+        }
+    }
+
+    #[test]
+    fn the_sensor_start_is_kept_only_where_the_draws_do_not_favour_the_learned_model() {
+        // The truth is a pinhole camera; the learned model is a curve near
+        // it, the start a line (each in its own units: the error is blind to
+        // them). The draws' tables span 20-50 px.
+        let pinhole = |o: f64| 40.0 / o;
+        let learned = poly(&[4.2, -0.13, 0.0012]);
+        let start = poly(&[100.0, -2.0]);
+        let near: Vec<Draw> = (0..10)
+            .map(|k| sensor_draw(move |o| (1.0 + 0.01 * f64::from(k)) * pinhole(o)))
+            .collect();
+        assert_eq!(sensor_better_share(&learned, &start, &near), Some(1.0));
+        // A straight truth favours the straight start.
+        let straight: Vec<Draw> = (0..10)
+            .map(|k| sensor_draw(move |o| 3.0 - (0.03 + 0.001 * f64::from(k)) * o))
+            .collect();
+        assert_eq!(sensor_better_share(&learned, &start, &straight), Some(0.0));
+        assert_eq!(sensor_better_share(&learned, &start, &[]), None);
+    }
+
+    #[test]
+    fn a_sensor_model_kept_is_the_starts_in_the_learned_ones_units() {
+        let judged: Vec<f64> = (20..=50).map(f64::from).collect();
+        let learned = poly(&[4.2, -0.13, 0.0012]);
+        let start = poly(&[100.0, -2.0]);
+        let at: Vec<f64> = judged.iter().map(|&o| learned.eval(o)).collect();
+        let (_, (scale, offset)) = affine_error(&start, &judged, &at);
+        let kept = start.rescaled(scale, offset);
+        // As near the learned model as an affine map of the start can be...
+        let (residual, (k, b)) = affine_error(&kept, &judged, &at);
+        assert!((k - 1.0).abs() < 1e-9 && b.abs() < 1e-9, "{k} {b}");
+        assert!(residual > 0.0);
+        // ...and, by the metric, exactly the start.
+        let truth: Vec<f64> = judged.iter().map(|o| 40.0 / o).collect();
+        let (e_kept, _) = affine_error(&kept, &judged, &truth);
+        let (e_start, _) = affine_error(&start, &judged, &truth);
+        assert!((e_kept - e_start).abs() < 1e-12 * e_start.max(1.0));
     }
 
     #[test]
