@@ -86,6 +86,27 @@ fn the_python_scasm_gives_the_rust_scasm_papers_models() {
     assert_eq!(again, python);
 }
 
+/// The shipped Python example that says how sure it is: its posterior
+/// reaches the host, which turns it into predicted bands, the same for the
+/// same events; its belief is its own (A0 as the action response, so its
+/// action model's predicted error is nil), judged by the measured models.
+#[test]
+fn a_programs_posterior_reaches_the_host_as_predicted_bands() {
+    let outcome = learn(PY_INVERSE, &[]).expect("inverse fit");
+    let predicted = outcome.predicted.expect("a posterior was asked for and given");
+    let sensor = predicted.learned.sensor.expect("a sensor band");
+    assert!(
+        0.0 < sensor.low && sensor.low < sensor.median && sensor.median < sensor.high,
+        "{sensor:?}"
+    );
+    let action = predicted.learned.action.expect("an action band");
+    assert!(action.high < 1e-9, "A0 against draws of A0: {action:?}");
+    assert!(predicted.better_than_start.1.is_some());
+    let mut again = learn(PY_INVERSE, &[]).expect("again");
+    again.learner_wall_s = outcome.learner_wall_s;
+    assert_eq!(again, outcome);
+}
+
 #[test]
 fn a_programs_own_settings_reach_it_and_are_checked() {
     let default = learn(PY_INVERSE, &[]).expect("default");

@@ -3,16 +3,23 @@
 command as the velocity (the identity action model A0), dead-reckon the
 location from it, and fit the sensor model by least squares over every
 reading so far (the normal equations, solved with the standard library).
-The action model is A0 itself. About forty lines of method.
+The action model is A0 itself. About forty lines of method, and twenty
+more for saying how sure it is (`posterior`): the least-squares fit's own
+Gaussian over the sensor model's coefficients (the residuals' variance times
+the inverse of the normal equations), its action model A0 taken as known.
+That belief counts the readings' scatter about the fit, not the dead
+reckoning's drift, and A0 is not the robot's response: the run's band
+coverage says how far to trust it.
 
     cargo run --release --example replay -- RUN_DIR --learner 'exec:python3 examples/learners/inverse_fit.py'
 """
 
 import os
+import random
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python"))
-from scasm_testbed import Command, Learner, Setting, run  # noqa: E402
+from scasm_testbed import Command, Draw, Learner, Setting, run  # noqa: E402
 
 
 def solve(a, b):
@@ -47,6 +54,7 @@ class InverseFit(Learner):
         self.ata = [[0.0] * n for _ in range(n)]
         self.aty = [0.0] * n
         self.x, self.readings, self.sensor = 0.0, 0, None
+        self.yty, self.seen = 0.0, (float("inf"), 0.0)
 
     def handle(self, e):
         if isinstance(e, Command):
@@ -59,7 +67,9 @@ class InverseFit(Learner):
             for j, pj in enumerate(powers):
                 self.ata[i][j] += pi * pj
         self.readings += 1
-        q = solve(self.ata, self.aty) if self.readings > self.degree else None
+        self.yty += self.x * self.x
+        self.seen = (min(self.seen[0], e.obs_px), max(self.seen[1], e.obs_px))
+        self.q = q = solve(self.ata, self.aty) if self.readings > self.degree else None
         # Back to raw pixels: q_k u^k = q_k / scale^k obs^k.
         self.sensor = None if q is None else [c / self.scale**k for k, c in enumerate(q)]
 
@@ -71,6 +81,36 @@ class InverseFit(Learner):
 
     def x_a(self):
         return self.x
+
+    def posterior(self, draws):
+        n = self.degree + 1
+        if self.sensor is None or self.readings <= n:
+            return None
+        # The residuals' variance, and the coefficients' covariance: its
+        # times the inverse of the normal equations (Cholesky-factored).
+        rss = self.yty - sum(q * b for q, b in zip(self.q, self.aty))
+        var = max(rss, 0.0) / (self.readings - n)
+        cols = [solve(self.ata, [float(i == j) for i in range(n)]) for j in range(n)]
+        if any(c is None for c in cols):
+            return None
+        cov = [[var * cols[j][i] for j in range(n)] for i in range(n)]
+        low = [[0.0] * n for _ in range(n)]
+        for i in range(n):
+            for j in range(i + 1):
+                d = cov[i][j] - sum(low[i][k] * low[j][k] for k in range(j))
+                low[i][j] = max(d, 0.0) ** 0.5 if i == j else (d / low[j][j] if low[j][j] else 0.0)
+        rng = random.Random(self.readings)  # the same events, the same draws
+        lo, hi = self.seen
+        if not hi > lo:
+            return None
+        table_obs = [lo + (hi - lo) * k / 31 for k in range(32)]
+        out = []
+        for _ in range(draws):
+            z = [rng.gauss(0.0, 1.0) for _ in range(n)]
+            q = [self.q[i] + sum(low[i][k] * z[k] for k in range(i + 1)) for i in range(n)]
+            table = [(o, sum(c * (o / self.scale) ** k for k, c in enumerate(q))) for o in table_obs]
+            out.append(Draw(action=[0.0, 1.0], sensor=table))
+        return out
 
 
 if __name__ == "__main__":
