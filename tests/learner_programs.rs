@@ -93,7 +93,9 @@ fn the_python_scasm_gives_the_rust_scasm_papers_models() {
 #[test]
 fn a_programs_posterior_reaches_the_host_as_predicted_bands() {
     let outcome = learn(PY_INVERSE, &[]).expect("inverse fit");
-    let predicted = outcome.predicted.expect("a posterior was asked for and given");
+    let predicted = outcome
+        .predicted
+        .expect("a posterior was asked for and given");
     let sensor = predicted.learned.sensor.expect("a sensor band");
     assert!(
         0.0 < sensor.low && sensor.low < sensor.median && sensor.median < sensor.high,

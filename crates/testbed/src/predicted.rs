@@ -117,7 +117,7 @@ impl Model {
             ),
             Self::Sensor => judged
                 .iter()
-                .map(|&(_, obs)| draw.location_at(obs).map(|x| (x, obs)))
+                .map(|&(_, obs)| metrics::interpolate(&draw.sensor, obs).map(|(x, _)| (x, obs)))
                 .collect(),
         }
     }
