@@ -143,8 +143,9 @@ impl Believed {
     }
 
     /// Decides, from a fresh belief, whether to keep each model's start:
-    /// while fewer than half the draws find the learned model nearer them
-    /// than the start's.
+    /// the action model's while fewer than half the draws find the learned
+    /// one nearer them than the start's, the sensor model's while fewer
+    /// than `sensor_below` of them do.
     fn decide(&mut self) {
         let (Some(action), Some(sensor)) =
             (self.learner.action_model(), self.learner.sensor_model())
