@@ -69,8 +69,9 @@ pub struct KeepStart {
 pub struct Believed {
     learner: Scasm,
     /// Section IV's learner: the sensor model by dead reckoning with A0, fed
-    /// the same events (the sensor model's start).
-    start: Scasm,
+    /// the same events (the sensor model's start); only if its start may be
+    /// kept.
+    start: Option<Scasm>,
     /// The likelihood, fed every event the learner took; solved only when
     /// a belief is due.
     batch: BatchMl,
@@ -97,11 +98,13 @@ impl Believed {
     /// likelihood started from a learner with its settings, keeping its
     /// start's models as `keep_start` says (`None`: never).
     pub fn new(learner: Scasm, keep_start: Option<KeepStart>) -> Self {
-        let start = Scasm::new(
-            *learner.params(),
-            Mode::SensorFromAction(Polynomial::identity()),
-        )
-        .expect("A0 is finite");
+        let start = keep_start.filter(|k| k.sensor_below > 0.0).map(|_| {
+            Scasm::new(
+                *learner.params(),
+                Mode::SensorFromAction(Polynomial::identity()),
+            )
+            .expect("A0 is finite")
+        });
         let likelihood = BatchMlConfig {
             online: ScasmConfig {
                 sensor_fit: SensorFit::Corrected,
@@ -147,16 +150,14 @@ impl Believed {
     /// one nearer them than the start's, the sensor model's while fewer
     /// than `sensor_below` of them do.
     fn decide(&mut self) {
-        let (Some(action), Some(sensor)) =
-            (self.learner.action_model(), self.learner.sensor_model())
-        else {
+        let (Some(action), Some(sensor), false) = (
+            self.learner.action_model(),
+            self.learner.sensor_model(),
+            self.lost,
+        ) else {
             (self.keeping_action, self.keeping_sensor) = (false, None);
             return;
         };
-        if self.lost {
-            (self.keeping_action, self.keeping_sensor) = (false, None);
-            return;
-        }
         self.solved_over = self.path.len();
         let Some(draws) = Self::draws(&mut self.batch, false, DECISION_DRAWS, &self.path) else {
             return;
@@ -166,7 +167,8 @@ impl Believed {
         let below = self.keep_start.map_or(0.0, |k| k.sensor_below);
         self.keeping_sensor = self
             .start
-            .sensor_model()
+            .as_ref()
+            .and_then(Scasm::sensor_model)
             .and_then(|start| sensor_better_share(&sensor, &start, &draws))
             .is_some_and(|s| s < below)
             .then(|| draws[0].sensor.iter().map(|&(obs, _)| obs).collect());
@@ -271,7 +273,12 @@ impl CalibrationLearner for Believed {
         // The learner took it; the batch learner's online learner checks
         // events alike, but should it not, the belief is no longer of the
         // events taken.
-        self.lost |= self.batch.handle(event).is_err() || self.start.handle(event).is_err();
+        let refused = self.batch.handle(event).is_err();
+        let refused_start = self
+            .start
+            .as_mut()
+            .is_some_and(|s| s.handle(event).is_err());
+        self.lost |= refused || refused_start;
         let x = self.learner.x_a().unwrap_or(0.0);
         match event {
             Event::Command { .. } => self.path.push(x),
@@ -305,7 +312,7 @@ impl CalibrationLearner for Believed {
         let learned = self.learner.sensor_model()?;
         let start = self.keeping_sensor.as_ref().and_then(|judged| {
             let at: Vec<f64> = judged.iter().map(|&o| learned.eval(o)).collect();
-            let start = self.start.sensor_model()?;
+            let start = self.start.as_ref()?.sensor_model()?;
             let (_, (scale, offset)) = affine_error(&start, judged, &at);
             Some(start.rescaled(scale, offset))
         });
